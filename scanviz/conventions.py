@@ -1,0 +1,70 @@
+"""The pixel conventions of scanviz, in one place (DESIGN §2).
+
+* Screen space is y-up: x grows right, y grows up; scanlines run bottom to top.
+  Images are arrays ``img[y, x]`` with row 0 at the bottom (show them with
+  ``origin="lower"``; PNG export flips rows).
+* A pixel is a unit square: pixel (x, y) is [x, x+1) x [y, y+1).
+* Sampling: ``sample="corner"`` samples pixel (x, y) at (x, y), its lower-left
+  corner; ``sample="center"`` at (x + 0.5, y + 0.5), as GPUs do.
+* Ownership: a sample exactly on the boundary is decided as if it were the
+  point (sx + eps, sy + eps**2) for an infinitesimal eps > 0. A pixel owns its
+  left and lower borders and its lower-left corner; shared edges are covered
+  exactly once. Under a y-flip this is the Direct3D/OpenGL top-left rule.
+* Inside: nonzero winding (default) or even-odd.
+* Sub-pixel precision: vertices snap to a grid of 1/2**bits pixel (default 8,
+  round half to even as ``numpy.rint``); every inside/outside decision is made
+  with exact integer arithmetic on the snapped values. ``subpixel_bits=None``
+  keeps the float64 values and decides them exactly too.
+* Coordinates must lie within +-COORD_LIMIT pixels.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+SAMPLE_MODES = ("corner", "center")
+RULES = ("nonzero", "evenodd")
+ARITHMETICS = ("exact", "float32", "float64")
+DEFAULT_SUBPIXEL_BITS = 8
+MAX_SUBPIXEL_BITS = 16
+COORD_LIMIT = 2**20
+MAX_RASTER_SIZE = 2**16
+
+
+def sample_offset(sample: str) -> float:
+    """Offset of a pixel's sample point from its lower-left corner, in pixels.
+
+    >>> sample_offset("corner"), sample_offset("center")
+    (0.0, 0.5)
+    """
+    return 0.5 if check_choice("sample", sample, SAMPLE_MODES) == "center" else 0.0
+
+
+def check_choice(name: str, value: object, choices: tuple[str, ...]) -> str:
+    """Return `value` if it is one of `choices`, else raise a ValueError naming `name`."""
+    if not isinstance(value, str) or value not in choices:
+        raise ValueError(f"{name!r} must be one of {', '.join(map(repr, choices))}; got {value!r}")
+    return value
+
+
+def check_subpixel_bits(subpixel_bits: object) -> int | None:
+    """Validate `subpixel_bits`: an int in 0..MAX_SUBPIXEL_BITS, or None for unsnapped input."""
+    if subpixel_bits is None:
+        return None
+    if isinstance(subpixel_bits, bool) or not isinstance(subpixel_bits, numbers.Integral):
+        raise TypeError(f"'subpixel_bits' must be an int or None; got {subpixel_bits!r}")
+    if not 0 <= subpixel_bits <= MAX_SUBPIXEL_BITS:
+        raise ValueError(
+            f"'subpixel_bits' must be in 0..{MAX_SUBPIXEL_BITS} or None; got {subpixel_bits}"
+        )
+    return int(subpixel_bits)
+
+
+def check_raster_size(width: object, height: object) -> tuple[int, int]:
+    """Validate a raster size: ints in 0..MAX_RASTER_SIZE (zero gives an empty raster)."""
+    for name, value in (("width", width), ("height", height)):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise TypeError(f"{name!r} must be an int; got {value!r}")
+        if not 0 <= value <= MAX_RASTER_SIZE:
+            raise ValueError(f"{name!r} must be in 0..{MAX_RASTER_SIZE}; got {value}")
+    return int(width), int(height)

@@ -1,0 +1,118 @@
+"""Trace events: small frozen records named after the algorithm step that emits them.
+
+Every event class sets a class-level ``kind`` and registers itself, so a trace
+can be written to JSON and read back exactly (see `scanviz.trace.codec`).
+Fields that filters understand: ``polygon`` (which input polygon), ``y`` (the
+scanline or pixel row), and an x-extent given by ``x`` or ``x_start``/``x_end``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import ClassVar
+
+EVENT_TYPES: dict[str, type[Event]] = {}
+
+
+@dataclass(frozen=True)
+class Event:
+    """Base of all trace events; subclasses set ``kind`` and are registered by it."""
+
+    kind: ClassVar[str] = "event"
+
+    def __init_subclass__(cls, **kwargs: object) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.kind in EVENT_TYPES:
+            raise TypeError(f"event kind {cls.kind!r} is registered twice")
+        EVENT_TYPES[cls.kind] = cls
+
+
+# --- scan conversion (scanviz.raster.scanline) -------------------------------------------
+
+
+@dataclass(frozen=True)
+class EdgeRecord:
+    """One polygon edge as the edge table holds it (pixel coordinates, caller's frame).
+
+    ``bucket`` is the first sample row the edge crosses, ceil(ymin); the edge
+    is active for rows ``bucket <= y < row_end`` (half-open). ``x`` is where it
+    crosses row ``bucket``. Edges that cross no sample row (horizontal ones,
+    and short ones between two rows) are kept for topology only.
+    """
+
+    edge: int
+    contour: int
+    x0: float
+    y0: float
+    x1: float
+    y1: float
+    ymin: float
+    ymax: float
+    bucket: int
+    row_end: int
+    x: float
+    x_exact: Fraction | None
+    dxdy: float
+    dxdy_exact: Fraction | None
+    winding: int
+    horizontal: bool
+    kept_for_topology: bool
+
+
+@dataclass(frozen=True)
+class AetEntry:
+    """One active edge on the current row: its x there, dx/dy, top y and winding."""
+
+    edge: int
+    x: float
+    x_exact: Fraction | None
+    dxdy: float
+    ymax: float
+    winding: int
+
+
+@dataclass(frozen=True)
+class EdgeTableBuilt(Event):
+    kind: ClassVar[str] = "edge_table_built"
+    polygon: int
+    edges: tuple[EdgeRecord, ...]
+
+
+@dataclass(frozen=True)
+class EdgesActivated(Event):
+    kind: ClassVar[str] = "edges_activated"
+    polygon: int
+    y: int
+    edges: tuple[int, ...]
+
+
+@dataclass(frozen=True)
+class EdgesRetired(Event):
+    kind: ClassVar[str] = "edges_retired"
+    polygon: int
+    y: int
+    edges: tuple[int, ...]
+
+
+@dataclass(frozen=True)
+class AetSorted(Event):
+    """The active edge table on row `y` after the x update and re-sort (`swaps` exchanges)."""
+
+    kind: ClassVar[str] = "aet_sorted"
+    polygon: int
+    y: int
+    entries: tuple[AetEntry, ...]
+    swaps: int
+
+
+@dataclass(frozen=True)
+class Span(Event):
+    """Pixels ``x_start <= x < x_end`` of row `y`, inside with this winding count."""
+
+    kind: ClassVar[str] = "span"
+    polygon: int
+    y: int
+    x_start: int
+    x_end: int
+    winding: int

@@ -1,0 +1,166 @@
+"""The Tracer protocol, a filtering recorder, and the Trace it produces."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Sequence
+from typing import Protocol, runtime_checkable
+
+from .events import EVENT_TYPES, Event
+
+
+@runtime_checkable
+class Tracer(Protocol):
+    """What a traced algorithm talks to. ``trace=None`` means no tracer at all.
+
+    `wants` lets the algorithm skip building an event nobody will keep;
+    `emit` receives the events that are built.
+    """
+
+    def wants(self, kind: str, *, polygon: int | None = None, y: int | None = None) -> bool: ...
+
+    def emit(self, event: Event) -> None: ...
+
+
+def _half_open(name: str, bounds: object) -> tuple[int, int] | None:
+    if bounds is None:
+        return None
+    try:
+        low, high = (int(v) for v in bounds)  # type: ignore[union-attr]
+    except (TypeError, ValueError):
+        raise ValueError(f"{name!r} must be a (start, stop) pair of ints; got {bounds!r}") from None
+    return low, high
+
+
+class Filter:
+    """Which events to keep: by kind, polygon, row range and pixel region (half-open ranges)."""
+
+    def __init__(
+        self,
+        kinds: Iterable[str] | None = None,
+        *,
+        rows: tuple[int, int] | None = None,
+        polygons: Iterable[int] | None = None,
+        region: tuple[int, int, int, int] | None = None,
+    ) -> None:
+        if isinstance(kinds, str):
+            kinds = [kinds]
+        self.kinds = None if kinds is None else frozenset(kinds)
+        unknown = sorted((self.kinds or frozenset()) - EVENT_TYPES.keys())
+        if unknown:
+            raise ValueError(
+                f"'kinds' has unknown event kinds {unknown}; known: {sorted(EVENT_TYPES)}"
+            )
+        self.rows = _half_open("rows", rows)
+        self.polygons = None if polygons is None else frozenset(int(p) for p in polygons)
+        if region is not None and len(region) != 4:
+            raise ValueError(f"'region' must be (x_start, y_start, x_end, y_end); got {region!r}")
+        self.region = None if region is None else tuple(int(v) for v in region)
+
+    def wants(self, kind: str, *, polygon: int | None = None, y: int | None = None) -> bool:
+        if self.kinds is not None and kind not in self.kinds:
+            return False
+        if polygon is not None and self.polygons is not None and polygon not in self.polygons:
+            return False
+        if y is not None:
+            for bounds in (self.rows, self.region and (self.region[1], self.region[3])):
+                if bounds is not None and not bounds[0] <= y < bounds[1]:
+                    return False
+        return True
+
+    def keeps(self, event: Event) -> bool:
+        if not self.wants(
+            event.kind, polygon=getattr(event, "polygon", None), y=getattr(event, "y", None)
+        ):
+            return False
+        if self.region is None:
+            return True
+        if hasattr(event, "x_start"):
+            return event.x_start < self.region[2] and event.x_end > self.region[0]
+        x = getattr(event, "x", None)
+        return not isinstance(x, int) or self.region[0] <= x < self.region[2]
+
+
+class Recorder(Filter):
+    """A tracer that records the events its filter keeps.
+
+    Examples
+    --------
+    >>> from scanviz import Polygon, scan_convert
+    >>> recorder = Recorder(kinds=["span"], rows=(2, 4))
+    >>> _ = scan_convert(Polygon([(0, 0), (4, 0), (4, 4)]), 4, 4, trace=recorder)
+    >>> [(e.y, e.x_start, e.x_end) for e in recorder.trace()]
+    [(2, 2, 4), (3, 3, 4)]
+    """
+
+    def __init__(self, kinds: Iterable[str] | None = None, **filters: object) -> None:
+        super().__init__(kinds, **filters)  # type: ignore[arg-type]
+        self.events: list[Event] = []
+
+    def emit(self, event: Event) -> None:
+        if self.keeps(event):
+            self.events.append(event)
+
+    def trace(self) -> Trace:
+        """The recorded events as an immutable `Trace`."""
+        return Trace(self.events)
+
+
+class Trace(Sequence[Event]):
+    """An immutable sequence of events with step indexing, filtering and JSON."""
+
+    def __init__(self, events: Iterable[Event] = ()) -> None:
+        self._events = tuple(events)
+
+    def __getitem__(self, index):  # type: ignore[override]
+        if isinstance(index, slice):
+            return Trace(self._events[index])
+        return self._events[index]
+
+    def __len__(self) -> int:
+        return len(self._events)
+
+    def __iter__(self) -> Iterator[Event]:
+        return iter(self._events)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Trace) and self._events == other._events
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        counts: dict[str, int] = {}
+        for event in self._events:
+            counts[event.kind] = counts.get(event.kind, 0) + 1
+        return f"Trace({len(self)} events: {counts})"
+
+    def of_kind(self, *kinds: str) -> Trace:
+        return self.filter(kinds)
+
+    def filter(self, kinds: Iterable[str] | None = None, **filters: object) -> Trace:
+        """A new Trace of the events a `Filter(kinds, **filters)` keeps."""
+        keep = Filter(kinds, **filters)  # type: ignore[arg-type]
+        return Trace(e for e in self._events if keep.keeps(e))
+
+    def image_at(self, step: int, width: int, height: int):
+        """Coverage counts painted by the ``span`` events among the first `step` events.
+
+        Returns a (height, width) ndarray of int32, row 0 at the bottom.
+        """
+        import numpy as np
+
+        image = np.zeros((height, width), dtype=np.int32)
+        for event in self._events[:step]:
+            if event.kind == "span" and 0 <= event.y < height:
+                image[event.y, max(event.x_start, 0) : min(event.x_end, width)] += 1
+        return image
+
+    def to_json(self, **dumps_options: object) -> str:
+        from .codec import trace_to_json
+
+        return trace_to_json(self, **dumps_options)
+
+    @classmethod
+    def from_json(cls, text: str) -> Trace:
+        from .codec import trace_from_json
+
+        return trace_from_json(text)
