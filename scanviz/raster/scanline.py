@@ -200,10 +200,16 @@ def _edge_record(edge: ActiveEdge, snapped: SnappedPolygon) -> EdgeRecord:
 
 
 def _aet_entry(edge: ActiveEdge, snapped: SnappedPolygon) -> AetEntry:
-    x, x_exact, dxdy, _ = _crossing_values(edge.crossing, snapped.to_pixels(0))
+    x, x_exact, dxdy, dxdy_exact = _crossing_values(edge.crossing, snapped.to_pixels(0))
     ymax = float(snapped.to_pixels(edge.upper[1]))
     return AetEntry(
-        edge=edge.edge, x=x, x_exact=x_exact, dxdy=dxdy, ymax=ymax, winding=edge.winding
+        edge=edge.edge,
+        x=x,
+        x_exact=x_exact,
+        dxdy=dxdy,
+        dxdy_exact=dxdy_exact,
+        ymax=ymax,
+        winding=edge.winding,
     )
 
 

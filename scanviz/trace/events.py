@@ -68,6 +68,7 @@ class AetEntry:
     x: float
     x_exact: Fraction | None
     dxdy: float
+    dxdy_exact: Fraction | None
     ymax: float
     winding: int
 
