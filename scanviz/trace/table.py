@@ -63,7 +63,7 @@ def trace_table(events: Iterable[Event]) -> str:
       row | ET in/out    | AET (edge: x, dx/dy, ymax, winding)             | spans [x_start, x_end)
         0 | +e1 +e2      | e2: 0, 0, 2, +1 | e1: 2, -1, 2, -1                | [0,2) w+1
         1 |              | e2: 0, 0, 2, +1 | e1: 1, -1, 2, -1                | [0,1) w+1
-        2 | -e1 -e2      |                                                   |
+        2 | -e2 -e1      |                                                   |
     """
     lines: list[str] = []
     rows: dict[tuple[int, int], dict[str, list[str]]] = {}
