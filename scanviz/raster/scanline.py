@@ -37,6 +37,8 @@ from ..trace.events import (
 )
 from .fixed import SnappedPolygon
 
+FLOAT_X_LIMIT = 2.0**40  # float-mode crossings are clamped here before ceil (spans clip anyway)
+
 
 def _ceil_div(a: int, b: int) -> int:
     return -((-a) // b)
@@ -84,16 +86,22 @@ class FloatCrossing:
         self.dtype = dtype
         self.xl = dtype(xl / scale)
         self.yl = dtype(yl / scale)
-        self.slope = (dtype((xl + dx) / scale) - self.xl) / (dtype((yl + dy) / scale) - self.yl)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            slope = (dtype((xl + dx) / scale) - self.xl) / (dtype((yl + dy) / scale) - self.yl)
+        # Where dy rounds to 0 or dx/dy overflows, the textbook code breaks; keep x at the lower end.
+        self.slope = slope if np.isfinite(slope) else dtype(0)
 
     def start(self, row: int) -> None:
-        self.x = self.xl + self.slope * (self.dtype(row) - self.yl)
+        with np.errstate(over="ignore"):
+            self.x = self.xl + self.slope * (self.dtype(row) - self.yl)
 
     def step(self) -> None:
-        self.x = self.x + self.slope
+        with np.errstate(over="ignore"):
+            self.x = self.x + self.slope
 
     def ceil(self) -> int:
-        return math.ceil(self.x)
+        # x may have overflowed to +-inf; any value beyond +-2**40 lies far off every raster.
+        return math.ceil(min(max(float(self.x), -FLOAT_X_LIMIT), FLOAT_X_LIMIT))
 
     def before(self, other: FloatCrossing) -> bool:
         return self.x < other.x
@@ -167,17 +175,33 @@ def _crossing_values(
     """(x, x_exact, dxdy, dxdy_exact) of a crossing, x in the caller's frame."""
     exact = crossing.exact()
     if exact is None:
-        return float(crossing.x) + float(offset), None, float(crossing.slope), None
-    return float(exact + offset), exact + offset, float(crossing.dxdy()), crossing.dxdy()
+        return float(crossing.x) + float(offset), None, *_slope_values(crossing)
+    return float(exact + offset), exact + offset, *_slope_values(crossing)
+
+
+def _slope_values(crossing) -> tuple[float, Fraction | None]:
+    """(dxdy, dxdy_exact) of a crossing."""
+    exact = crossing.dxdy()
+    return (float(crossing.slope), None) if exact is None else (_saturating_float(exact), exact)
+
+
+def _saturating_float(value: Fraction) -> float:
+    """`value` as a float, +-inf past the float range (dx/dy of near-horizontal subnormal edges)."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
 
 
 def _edge_record(edge: ActiveEdge, snapped: SnappedPolygon) -> EdgeRecord:
     px = snapped.to_pixels
-    if edge.crossing is None:  # horizontal: no crossing, no slope
-        x, x_exact, dxdy, dxdy_exact = float(px(edge.lower[0])), px(edge.lower[0]), 0.0, None
-    else:
+    if edge.bucket < edge.row_end:
         edge.crossing.start(edge.bucket)
         x, x_exact, dxdy, dxdy_exact = _crossing_values(edge.crossing, px(0))
+    else:  # crosses no sample row: no crossing to show, so show the lower endpoint
+        x, x_exact, dxdy, dxdy_exact = float(px(edge.lower[0])), px(edge.lower[0]), 0.0, None
+        if edge.crossing is not None:
+            dxdy, dxdy_exact = _slope_values(edge.crossing)
     return EdgeRecord(
         edge=edge.edge,
         contour=edge.contour,

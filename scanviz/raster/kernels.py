@@ -1,0 +1,393 @@
+"""Compiled twins of the raster algorithms (numba): the reference's spans, fast.
+
+`scan_polygon` is `scanline.scan_reference` without the tracing: the same edge
+table, the same exact DDA (x = q + r/den pixels) or textbook float update with
+the same operations in the same dtype, the same spans. It differs in two ways
+that cannot change a span:
+
+* The active edge table is sorted by ceil(x), not by x. A span runs between the
+  ceilings of two consecutive crossings; crossings with equal ceilings bound
+  only empty spans among themselves, and the winding after the last of them is
+  their sum, whatever their order. So every order by ceiling emits the same
+  spans. (Hence sort swaps are not counted here.)
+* An edge entering at row y starts at x = (xl + dx*(y*scale - yl)/dy) / scale.
+  On the finest grid (2**17 units a pixel, +-2**20 pixels) dx and y*scale - yl
+  reach 2**38, their product 2**76, beyond int64: `mul_divmod` divides it
+  exactly all the same.
+
+Coverage counts (`fill_polygons`, `rasterize_triangles`) are accumulated as
++1/-1 marks where spans start and end, then one prefix sum per row: the cost is
+O(spans + pixels), not O(covered area). `rasterize_triangles` walks a triangle
+as two trapezoids, the long edge against each short edge: exactly the two
+active edges the ET/AET has on each row of a triangle.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .scanline import FLOAT_X_LIMIT
+
+# Fields of the edge table (rows; column e is edge e) and of the active edge table
+# (column i is the i-th active edge from the left: the textbook AET entry). Both
+# share WINDING and ROW_END. The AET crossing is x = Q + R/DEN pixels, stepped by
+# dx/dy = Q_STEP + R_STEP/DEN; in float arithmetic x and dx/dy are X and SLOPE.
+WINDING, ROW_END, ROW_START, X0, Y0, X1, Y1 = range(7)
+Q, R, Q_STEP, R_STEP, DEN, CEIL = range(2, 8)
+X, SLOPE = range(2)
+
+
+@njit(cache=True, inline="always")
+def mul_divmod(a, b, d):
+    """(floor(a*b / d), a*b mod d) for int64 a, b, d with d > 0, |a|, |b| < 2**53, |a*b/d| < 2**50.
+
+    a*b itself may overflow int64. The quotient is estimated in float64: two
+    roundings of relative error 2**-53 put it within 2**50 * 2**-51.9 < 1 of the
+    truth, so its floor is off by at most one. The remainder a*b - q*d is then
+    in [-d, 2d), small, so computing it modulo 2**64 (uint64 arithmetic wraps by
+    definition; int64 overflow would be undefined) gives it exactly.
+
+    >>> a, b = 2**38 + 12345, -(2**37) - 999
+    >>> mul_divmod(a, b, 2**38 + 7) == divmod(a * b, 2**38 + 7)
+    True
+    """
+    q = np.int64(math.floor(float(a) * float(b) / float(d)))
+    r = np.int64(np.uint64(a) * np.uint64(b) - np.uint64(q) * np.uint64(d))
+    while r < 0:
+        r += d
+        q -= 1
+    while r >= d:
+        r -= d
+        q += 1
+    return q, r
+
+
+@njit(cache=True, inline="always")
+def ceil_div(a, b):
+    return -((-a) // b)
+
+
+@njit(cache=True, inline="always")
+def exact_crossing(edge, scale, row):
+    """Crossing of edge (x0, y0, x1, y1) with sample row `row`: (q, r, q_step, r_step, den).
+
+    x = q + r/den pixels with 0 <= r < den = dy*scale, as `ExactCrossing.start`.
+    Needs y0 <= row*scale < y1, so t = row*scale - y0 is in [0, dy): then
+    dx*t = along*dy + rest, the crossing is x0 + along + rest/dy grid units, and
+    |along| <= |dx| keeps every other product within int64 (den < 2**56).
+    """
+    x0, y0, x1, y1 = edge
+    dx, dy = x1 - x0, y1 - y0
+    along, rest = mul_divmod(dx, row * scale - y0, dy)
+    x_units = x0 + along
+    q = x_units // scale
+    q_step, r_step = divmod(dx, dy)  # dx/dy = q_step + r_step/dy pixels per row
+    return q, (x_units - q * scale) * dy + rest, q_step, r_step * scale, dy * scale
+
+
+@njit(cache=True, inline="always")
+def exact_step(q, r, q_step, r_step, den):
+    """The crossing one row up: add dx/dy and carry the remainder into the integer part."""
+    q += q_step
+    r += r_step
+    if r >= den:
+        r -= den
+        q += 1
+    return q, r
+
+
+@njit(cache=True, inline="always")
+def float_crossing(edge, scale, row, cast):
+    """(x, slope) at `row` in dtype `cast`, with the operations of `FloatCrossing`."""
+    x0, y0, x1, y1 = edge
+    x_low, y_low = cast(x0 / scale), cast(y0 / scale)
+    dy = cast(y1 / scale) - y_low
+    slope = (cast(x1 / scale) - x_low) / dy if dy != 0 else cast(0)
+    if not math.isfinite(slope):  # the textbook dx/dy breaks down: x stays at the lower end
+        slope = cast(0)
+    return x_low + slope * (cast(row) - y_low), slope
+
+
+@njit(cache=True, inline="always")
+def float_ceil(x):
+    """ceil(x) as `FloatCrossing.ceil` takes it: clamped to +-FLOAT_X_LIMIT, off every raster."""
+    return math.ceil(min(max(float(x), -FLOAT_X_LIMIT), FLOAT_X_LIMIT))
+
+
+@njit(cache=True)
+def edge_table(units, offsets, scale, height):
+    """The edges of one polygon that cross a sample row of the raster, sorted by first row.
+
+    `offsets` are its contours' starts in `units` plus the end. Returns
+    (table, edges, kept_for_topology), table a (7, k) int64 array whose column
+    e holds edge e's WINDING, ROW_START, ROW_END and ends X0, Y0 (lower), X1, Y1.
+    """
+    table = np.empty((7, offsets[-1] - offsets[0]), np.int64)
+    count = kept_for_topology = 0
+    for c in range(offsets.shape[0] - 1):
+        for i in range(offsets[c], offsets[c + 1]):
+            j = i + 1 if i + 1 < offsets[c + 1] else offsets[c]
+            lower, upper = (i, j) if units[i, 1] <= units[j, 1] else (j, i)
+            bucket = ceil_div(units[lower, 1], scale)
+            row_end = ceil_div(units[upper, 1], scale)
+            kept_for_topology += bucket >= row_end
+            row_start = max(bucket, 0)  # rows below the raster are never scanned
+            if row_start < min(row_end, height):
+                # Downward edges enter a counter-clockwise polygon from the left: winding +1.
+                table[WINDING, count] = 1 if units[j, 1] < units[i, 1] else -1
+                table[ROW_START, count], table[ROW_END, count] = row_start, row_end
+                table[X0, count], table[Y0, count] = units[lower, 0], units[lower, 1]
+                table[X1, count], table[Y1, count] = units[upper, 0], units[upper, 1]
+                count += 1
+    order = np.argsort(table[ROW_START, :count], kind="mergesort")
+    return np.ascontiguousarray(table[:, order]), offsets[-1] - offsets[0], kept_for_topology
+
+
+@njit(cache=True, inline="always")
+def activate(table, e, aet, xs, i, row, scale, exact, cast):
+    """edges_activated: AET entry i for edge e, its crossing computed directly at `row`."""
+    aet[WINDING, i], aet[ROW_END, i] = table[WINDING, e], table[ROW_END, e]
+    edge = (table[X0, e], table[Y0, e], table[X1, e], table[Y1, e])
+    if exact:
+        q, r, aet[Q_STEP, i], aet[R_STEP, i], aet[DEN, i] = exact_crossing(edge, scale, row)
+        aet[Q, i], aet[R, i], aet[CEIL, i] = q, r, q + (r > 0)
+    else:
+        xs[X, i], xs[SLOPE, i] = float_crossing(edge, scale, row, cast)
+        aet[CEIL, i] = float_ceil(xs[X, i])
+
+
+@njit(cache=True, inline="always")
+def advance(aet, xs, i, exact):
+    """Step AET entry i one row: x += dx/dy, exactly or in the float dtype; update ceil(x)."""
+    if exact:
+        q, r = exact_step(aet[Q, i], aet[R, i], aet[Q_STEP, i], aet[R_STEP, i], aet[DEN, i])
+        aet[Q, i], aet[R, i], aet[CEIL, i] = q, r, q + (r > 0)
+    else:
+        xs[X, i] = xs[X, i] + xs[SLOPE, i]
+        aet[CEIL, i] = float_ceil(xs[X, i])
+
+
+@njit(cache=True, inline="always")
+def move(aet, xs, source, target):
+    """Copy AET entry `source` to column `target`."""
+    for field in range(8):  # a constant trip count: unrolled
+        aet[field, target] = aet[field, source]
+    xs[X, target], xs[SLOPE, target] = xs[X, source], xs[SLOPE, source]
+
+
+@njit(cache=True, inline="always")
+def sort_by_ceil(aet, xs, count):
+    """aet_sorted: insertion sort by ceil(x), nearly sorted already; column `count` holds."""
+    for i in range(1, count):
+        if aet[CEIL, i - 1] > aet[CEIL, i]:
+            move(aet, xs, i, count)
+            j = i
+            while j > 0 and aet[CEIL, j - 1] > aet[CEIL, count]:
+                move(aet, xs, j - 1, j)
+                j -= 1
+            move(aet, xs, count, j)
+
+
+@njit(cache=True, inline="always")
+def store_spans(aet, count, y, width, parity, spans, span_count):
+    """span: store the clipped, nonempty inside runs between consecutive crossings."""
+    winding = 0
+    for i in range(count - 1):
+        winding += aet[WINDING, i]
+        start, end = max(aet[CEIL, i], 0), min(aet[CEIL, i + 1], width)
+        spans[span_count, 0], spans[span_count, 1], spans[span_count, 2] = y, start, end
+        span_count += ((winding & parity) != 0) & (start < end)  # keep it, or overwrite it
+    return span_count
+
+
+@njit(cache=True, inline="always")
+def mark_crossings(aet, count, y, parity, image):
+    """Add this row's spans to `image` as marks: +1 where inside starts, -1 where it ends.
+
+    Summed left to right, the marks give 1 between clamp(ceil(x_i)) and
+    clamp(ceil(x_i+1)) exactly when the winding after crossing i is inside: the
+    row's spans, with empty ones cancelling. Marks at x = width are dropped.
+    """
+    width = image.shape[1]
+    inside = 0
+    winding = 0
+    for i in range(count):
+        winding += aet[WINDING, i]
+        now = np.int32((winding & parity) != 0)
+        x = min(max(aet[CEIL, i], 0), width)
+        if x < width:
+            image[y, x] += now - inside
+        inside = now
+
+
+@njit(cache=True)
+def scan_polygon(units, offsets, scale, width, height, evenodd, exact, cast, image):
+    """ET/AET scan conversion of one polygon (contours `offsets` of `units`).
+
+    `cast` is np.float32 or np.float64 for the float arithmetic (unused when
+    `exact`). The spans are added to the (height, width) int32 `image` as
+    `mark_crossings` marks, or, if `image` is empty, returned.
+    Returns (spans, (edges, kept_for_topology, rows_scanned, max_active)).
+    """
+    table, edges, kept_for_topology = edge_table(units, offsets, scale, height)
+    count = table.shape[1]
+    # A row of n active edges has at most n - 1 spans: room for all, so no regrowth.
+    capacity = 0 if image.size else np.sum(np.minimum(table[ROW_END], height) - table[ROW_START])
+    spans = np.empty((capacity, 3), np.int64)
+    aet = np.empty((8, count + 1), np.int64)
+    xs = np.empty((2, count + 1), cast)
+    parity = 1 if evenodd else -1  # winding & parity: odd for even-odd, nonzero for nonzero
+    n_active = entering = span_count = rows_scanned = max_active = 0
+    y = table[ROW_START, 0] if count else height
+    while y < height and (n_active > 0 or entering < count):
+        if n_active == 0 and table[ROW_START, entering] > y:
+            y = table[ROW_START, entering]  # skip empty rows
+        kept = 0  # edges_retired: drop edges whose ymax is passed, step the others
+        for i in range(n_active):
+            if aet[ROW_END, i] > y:
+                if kept != i:
+                    move(aet, xs, i, kept)
+                advance(aet, xs, kept, exact)
+                kept += 1
+        n_active = kept
+        while entering < count and table[ROW_START, entering] == y:
+            activate(table, entering, aet, xs, n_active, y, scale, exact, cast)
+            n_active += 1
+            entering += 1
+        sort_by_ceil(aet, xs, n_active)
+        rows_scanned += 1
+        max_active = max(max_active, n_active)
+        if image.size:
+            mark_crossings(aet, n_active, y, parity, image)
+        else:
+            span_count = store_spans(aet, n_active, y, width, parity, spans, span_count)
+        y += 1
+    return spans[:span_count], (edges, kept_for_topology, rows_scanned, max_active)
+
+
+@njit(cache=True)
+def scan_spans(units, offsets, scale, width, height, evenodd, exact, cast):
+    """Spans (K, 3) int64 of one polygon, and its (edges, kept, rows_scanned, max_active)."""
+    no_image = np.empty((0, 0), np.int32)
+    spans, stats = scan_polygon(
+        units, offsets, scale, width, height, evenodd, exact, cast, no_image
+    )
+    return spans.copy(), stats  # not a view of the worst-case buffer
+
+
+@njit(cache=True)
+def paint_mask(spans, width, height):
+    """The (height, width) bool mask of (K, 3) spans."""
+    mask = np.zeros((height, width), np.bool_)
+    for k in range(spans.shape[0]):
+        mask[spans[k, 0], spans[k, 1] : spans[k, 2]] = True
+    return mask
+
+
+@njit(cache=True, inline="always")
+def mark_span(image, y, start, end):
+    """Count span [start, end) of row y as a +1 at its start and a -1 just after it."""
+    image[y, start] += 1
+    if end < image.shape[1]:
+        image[y, end] -= 1
+
+
+@njit(cache=True)
+def prefix_sum_rows(image, first, stop):
+    """Turn the marks of rows [first, stop) into coverage counts, in place."""
+    for y in range(first, stop):
+        total = 0
+        for x in range(image.shape[1]):
+            total += image[y, x]
+            image[y, x] = total
+
+
+@njit(cache=True)
+def count_spans(spans, width, height):
+    """(height, width) int32 count of the (K, 3) spans covering each sample."""
+    image = np.zeros((height, width), np.int32)
+    for k in range(spans.shape[0]):
+        mark_span(image, spans[k, 0], spans[k, 1], spans[k, 2])
+    prefix_sum_rows(image, 0, height)
+    return image
+
+
+@njit(cache=True)
+def fill_polygons(units, contour_offsets, polygon_contours, scales, width, height, evenodd):
+    """(height, width) int32 count of the polygons covering each sample (exact arithmetic).
+
+    Polygon p has the contours contour_offsets[polygon_contours[p] : polygon_contours[p+1] + 1]
+    of the packed (M, 2) int64 `units`, on a grid of scales[p] units per pixel.
+    """
+    image = np.zeros((height, width), np.int32)
+    if image.size == 0:
+        return image
+    first_row, stop_row = height, 0
+    for p in range(scales.shape[0]):
+        offsets = contour_offsets[polygon_contours[p] : polygon_contours[p + 1] + 1]
+        ys = units[offsets[0] : offsets[-1], 1]
+        first_row = min(first_row, max(ceil_div(ys.min(), scales[p]), 0))
+        stop_row = max(stop_row, min(ceil_div(ys.max(), scales[p]), height))
+        scan_polygon(units, offsets, scales[p], width, height, evenodd, True, np.float64, image)
+    prefix_sum_rows(image, first_row, stop_row)
+    return image
+
+
+@njit(cache=True, inline="always")
+def fill_trapezoid(image, edge_a, edge_b, first, stop, scale):
+    """Mark the spans between edges (x0, y0, x1, y1), lower end first, on rows [first, stop)."""
+    if first >= stop:  # also keeps a horizontal edge (dy = 0) from being divided by
+        return
+    width = image.shape[1]
+    qa, ra, qa_step, ra_step, den_a = exact_crossing(edge_a, scale, first)
+    qb, rb, qb_step, rb_step, den_b = exact_crossing(edge_b, scale, first)
+    for y in range(first, stop):
+        ceil_a, ceil_b = qa + (ra > 0), qb + (rb > 0)
+        start, end = max(min(ceil_a, ceil_b), 0), min(max(ceil_a, ceil_b), width)
+        if start < end:
+            mark_span(image, y, start, end)
+        qa, ra = exact_step(qa, ra, qa_step, ra_step, den_a)
+        qb, rb = exact_step(qb, rb, qb_step, rb_step, den_b)
+
+
+@njit(cache=True)
+def rasterize_triangles(units, scale, width, height):
+    """(height, width) int32 count of the (T, 3, 2) int64 grid triangles covering each sample.
+
+    A triangle's rows [ceil(y_low), ceil(y_high)) have two active edges: the
+    long edge low-high, and low-mid below ceil(y_mid), mid-high from there up.
+    The winding between them is +-1, so both fill rules give the span
+    [min ceil, max ceil). Zero-area triangles give only empty spans.
+    """
+    image = np.zeros((height, width), np.int32)
+    first_row, stop_row = height, 0
+    for t in range(units.shape[0]):
+        x0, y0, x1, y1, x2, y2 = (
+            units[t, 0, 0],
+            units[t, 0, 1],
+            units[t, 1, 0],
+            units[t, 1, 1],
+            units[t, 2, 0],
+            units[t, 2, 1],
+        )
+        if y1 < y0:  # order the vertices by y: 0 low, 1 mid, 2 high
+            x0, y0, x1, y1 = x1, y1, x0, y0
+        if y2 < y1:
+            x1, y1, x2, y2 = x2, y2, x1, y1
+        if y1 < y0:
+            x0, y0, x1, y1 = x1, y1, x0, y0
+        if ceil_div(max(x0, x1, x2), scale) <= 0 or ceil_div(min(x0, x1, x2), scale) >= width:
+            continue  # every span would be clipped away
+        first = max(ceil_div(y0, scale), 0)
+        middle = ceil_div(y1, scale)
+        stop = min(ceil_div(y2, scale), height)
+        if first < stop:
+            long_edge = (x0, y0, x2, y2)
+            fill_trapezoid(image, long_edge, (x0, y0, x1, y1), first, min(middle, stop), scale)
+            fill_trapezoid(image, long_edge, (x1, y1, x2, y2), max(middle, first), stop, scale)
+            first_row, stop_row = min(first_row, first), max(stop_row, stop)
+    prefix_sum_rows(image, first_row, stop_row)
+    return image

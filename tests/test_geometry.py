@@ -1,0 +1,92 @@
+"""Polygon: construction, read-only contours, and validation messages (DESIGN §6)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from scanviz import Polygon
+from scanviz.conventions import COORD_LIMIT
+
+TRIANGLE = [(0, 0), (4, 0), (4, 3)]
+
+
+def test_one_contour_or_a_list_of_contours():
+    assert Polygon(TRIANGLE).contour_count == 1
+    assert Polygon([TRIANGLE]).contour_count == 1
+    ragged = Polygon([TRIANGLE, [(1, 1), (2, 1), (2, 2), (1, 2)]])
+    assert (ragged.contour_count, ragged.vertex_count) == (2, 7)
+    assert ragged.offsets.tolist() == [0, 3, 7]
+    assert ragged.vertices.shape == (7, 2)
+    assert ragged.bounds() == (0.0, 0.0, 4.0, 3.0)
+
+
+def test_contours_are_read_only_float64_copies():
+    points = np.array(TRIANGLE, dtype=np.int32)
+    polygon = Polygon(points)
+    points[0] = (9, 9)
+    contour = polygon.contours[0]
+    assert contour.dtype == np.float64 and contour[0].tolist() == [0.0, 0.0]
+    with pytest.raises(ValueError, match="read-only"):
+        contour[0, 0] = 1.0
+
+
+def test_edges_close_each_contour():
+    edges = [(c, i, a.tolist(), b.tolist()) for c, i, a, b in Polygon(TRIANGLE).edges()]
+    assert edges == [
+        (0, 0, [0.0, 0.0], [4.0, 0.0]),
+        (0, 1, [4.0, 0.0], [4.0, 3.0]),
+        (0, 2, [4.0, 3.0], [0.0, 0.0]),
+    ]
+
+
+def test_equality_copy_and_repr():
+    polygon = Polygon([TRIANGLE, [(1, 1), (2, 1), (2, 2)]])
+    assert Polygon(polygon) == polygon
+    assert eval(repr(polygon), {"Polygon": Polygon}) == polygon
+    assert Polygon(TRIANGLE) != Polygon(TRIANGLE[::-1])
+    with pytest.raises(TypeError):
+        hash(polygon)
+
+
+def test_coordinate_limit_is_inclusive():
+    edge = Polygon([(-COORD_LIMIT, -COORD_LIMIT), (COORD_LIMIT, 0), (0, COORD_LIMIT)])
+    assert edge.bounds() == (-COORD_LIMIT, -COORD_LIMIT, COORD_LIMIT, COORD_LIMIT)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_non_finite_coordinate_names_contour_and_vertex(bad):
+    with pytest.raises(ValueError, match=r"contour 1 vertex 2 is not finite"):
+        Polygon([TRIANGLE, [(0, 0), (1, 0), (bad, 1), (0, 1)]])
+
+
+@pytest.mark.parametrize("far", [COORD_LIMIT + 1, -COORD_LIMIT - 0.5, 1e300])
+def test_coordinate_beyond_limit_names_contour_and_vertex(far):
+    with pytest.raises(ValueError, match=r"contour 0 vertex 1 .* beyond the coordinate limit"):
+        Polygon([(0, 0), (far, 0), (0, 1)])
+
+
+@pytest.mark.parametrize(
+    ("contours", "message"),
+    [
+        (
+            [(0, 0, 0), (1, 0, 0), (0, 1, 0)],
+            r"contour 0 must be an \(N, 2\) array; got shape \(3, 3\)",
+        ),
+        ([TRIANGLE, [1, 2, 3]], r"contour 1 must be an \(N, 2\) array; got shape \(3,\)"),
+        (np.zeros((2, 3, 2, 2)), r"'contours' must be an \(N, 2\) array or a list"),
+        ([], r"'contours' must hold at least one contour"),
+        ([(0, 0), (1, 1)], r"contour 0 has 2 distinct vertices; a contour needs at least 3"),
+        ([(0, 0), (1, 1), (0, 0), (1, 1)], r"contour 0 has 2 distinct vertices"),
+        ([TRIANGLE, [(5, 5)] * 4], r"contour 1 has 1 distinct vertices"),
+    ],
+    ids=["N-by-3", "flat", "4-d", "empty", "two-points", "two-distinct", "one-distinct"],
+)
+def test_bad_shapes_raise_value_error_naming_the_rule(contours, message):
+    with pytest.raises(ValueError, match=message):
+        Polygon(contours)
+
+
+def test_non_numbers_raise_type_error():
+    with pytest.raises(TypeError, match=r"contour 0 must be an \(N, 2\) array of numbers"):
+        Polygon([[("a", "b"), (1, 0), (0, 1)]])
