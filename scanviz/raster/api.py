@@ -19,7 +19,7 @@ from ..conventions import (
 from ..geometry import Polygon
 from ..trace import Recorder, Trace, Tracer
 from . import kernels
-from .fixed import SnappedPolygon, _exact_bits, snap
+from .fixed import SnappedPolygon, exact_bits, snap, snap_units
 from .scanline import ScanStats, scan_reference
 
 
@@ -195,12 +195,10 @@ def _three_distinct(batch: np.ndarray) -> np.ndarray:
 def _snap_batch(batch: np.ndarray, sample: str, bits: int | None) -> tuple[np.ndarray, int] | None:
     """(units, scale) of a (T, N, 2) batch snapped as `fixed.snap` does; None if int64 cannot hold it."""
     if bits is None:
-        bits = _exact_bits(batch) if batch.size else 0
+        bits = exact_bits(batch)
         if bits > MAX_SUBPIXEL_BITS:
             return None
-    units = 2 * np.rint(batch * 2.0**bits).astype(np.int64)
-    if sample == "center":
-        units -= 2**bits
+    units = snap_units(batch, sample, bits)
     return units, 2 ** (bits + 1)
 
 

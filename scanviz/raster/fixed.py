@@ -70,10 +70,27 @@ class SnappedPolygon:
         return np.array([[float(self.to_pixels(int(u))) for u in row] for row in self.units])
 
 
-def _exact_bits(values: np.ndarray) -> int:
-    """Fewest fractional bits that represent every float64 in `values` exactly."""
+def exact_bits(values: np.ndarray) -> int:
+    """Fewest fractional bits that represent every float64 in `values` exactly.
+
+    >>> exact_bits(np.array([1.0, 0.75, -3.125]))
+    3
+    """
     denominators = (Fraction(float(v)).denominator for v in np.unique(values))
-    return max(d.bit_length() - 1 for d in denominators)
+    return max((d.bit_length() - 1 for d in denominators), default=0)
+
+
+def snap_units(vertices: np.ndarray, sample: str, bits: int) -> np.ndarray:
+    """Grid units of vertices (any shape ending in 2) for `bits` sub-pixel bits, as `snap` does.
+
+    int64 for bits <= MAX_SUBPIXEL_BITS, else exact Python ints (dtype object).
+    """
+    if bits <= MAX_SUBPIXEL_BITS:
+        units = 2 * np.rint(vertices * 2.0**bits).astype(np.int64)
+    else:
+        exact = [2 * int(Fraction(float(v)) * 2**bits) for v in vertices.ravel()]
+        units = np.array(exact, dtype=object).reshape(vertices.shape)
+    return units - 2**bits if sample == "center" else units
 
 
 def snap(polygon: Polygon, sample: str = "corner", subpixel_bits: int | None = 8) -> SnappedPolygon:
@@ -89,14 +106,7 @@ def snap(polygon: Polygon, sample: str = "corner", subpixel_bits: int | None = 8
     bits = check_subpixel_bits(subpixel_bits)
     vertices = polygon.vertices
     if bits is None:
-        bits = _exact_bits(vertices)
-    if bits <= MAX_SUBPIXEL_BITS:
-        units = 2 * np.rint(vertices * 2.0**bits).astype(np.int64)
-    else:
-        units = np.array(
-            [[2 * int(Fraction(float(v)) * 2**bits) for v in row] for row in vertices], dtype=object
-        )
-    if sample == "center":
-        units = units - 2**bits
+        bits = exact_bits(vertices)
+    units = snap_units(vertices, sample, bits)
     units.setflags(write=False)
     return SnappedPolygon(units, polygon.offsets, bits, sample)
