@@ -106,6 +106,26 @@ def _cmd_bench(args: argparse.Namespace) -> None:
     run(args.suite, quick=args.quick)
 
 
+def _cmd_render(args: argparse.Namespace) -> None:
+    import matplotlib.pyplot as plt
+
+    from .io import load_scene
+    from .render import render
+
+    scene = load_scene(args.scene)
+    result = render(scene, args.width, args.height, shading=args.shading, sample=args.sample)
+    if args.plan:
+        print(result.plan)
+    if args.output:
+        plt.imsave(args.output, result.image[::-1])  # PNG rows run top-down
+    s = result.stats
+    print(
+        f"{args.output or args.scene}: {args.width}x{args.height}, {s.polygons_in} polygons "
+        f"({s.culled} culled, {s.off_screen} off-screen, {s.clipped} clipped), "
+        f"{s.fragments} fragments, {s.depth_passed} depth tests passed, {s.depth_failed} failed"
+    )
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="python -m scanviz", description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(dest="command", required=True)
@@ -120,8 +140,17 @@ def build_parser() -> argparse.ArgumentParser:
     fill.add_argument("-o", "--output", required=True, help="PNG file to write")
     fill.add_argument("--scale", type=int, default=1, help="magnify each pixel to N x N in the PNG")
     fill.set_defaults(run=_cmd_fill)
+    render = commands.add_parser("render", help="render a scene (JSON file or builtin:NAME) to PNG")
+    render.add_argument("scene", help="SCENE.json or builtin:NAME")
+    render.add_argument("-o", "--output", help="PNG file to write")
+    render.add_argument("--width", type=int, default=512)
+    render.add_argument("--height", type=int, default=512)
+    render.add_argument("--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch"])
+    render.add_argument("--sample", default="corner", choices=["corner", "center"])
+    render.add_argument("--plan", action="store_true", help="print which stages run and why")
+    render.set_defaults(run=_cmd_render)
     bench = commands.add_parser("bench", help="benchmarks: run time against peers and error")
-    bench.add_argument("suite", choices=["raster"])
+    bench.add_argument("suite", choices=["raster", "render"])
     bench.add_argument("--quick", action="store_true", help="smaller scenes, for a smoke test")
     bench.set_defaults(run=_cmd_bench)
     return parser

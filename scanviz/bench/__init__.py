@@ -10,7 +10,7 @@ import statistics
 import time
 from collections.abc import Callable
 
-SUITES = ("raster",)
+SUITES = ("raster", "render")
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -31,5 +31,9 @@ def run(suite: str, *, quick: bool = False) -> None:
         from .raster import run_raster
 
         run_raster(quick=quick)
+    elif suite == "render":
+        from .render import run_render
+
+        run_render(quick=quick)
     else:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")

@@ -104,5 +104,7 @@ def run_raster(*, quick: bool = False) -> list[dict]:
     else:
         print("ratio = OpenCV time / scanviz time (> 1: scanviz is faster); differ = samples whose")
         print("coverage differs (OpenCV's fill rule includes boundary pixels on both sides)")
-    print("Msamples/s = samples filled, summed over polygons (overlaps count each time), per second")
+    print(
+        "Msamples/s = samples filled, summed over polygons (overlaps count each time), per second"
+    )
     return rows

@@ -33,9 +33,10 @@ from .scanline import FLOAT_X_LIMIT
 
 # Fields of the edge table (rows; column e is edge e) and of the active edge table
 # (column i is the i-th active edge from the left: the textbook AET entry). Both
-# share WINDING and ROW_END. The AET crossing is x = Q + R/DEN pixels, stepped by
-# dx/dy = Q_STEP + R_STEP/DEN; in float arithmetic x and dx/dy are X and SLOPE.
-WINDING, ROW_END, ROW_START, X0, Y0, X1, Y1 = range(7)
+# share WINDING and ROW_END. LOWER and UPPER are the vertex indices of the edge's
+# ends (for interpolating vertex values). The AET crossing is x = Q + R/DEN pixels,
+# stepped by dx/dy = Q_STEP + R_STEP/DEN; in float arithmetic x and dx/dy are X and SLOPE.
+WINDING, ROW_END, ROW_START, X0, Y0, X1, Y1, LOWER, UPPER = range(9)
 Q, R, Q_STEP, R_STEP, DEN, CEIL = range(2, 8)
 X, SLOPE = range(2)
 
@@ -122,10 +123,11 @@ def edge_table(units, offsets, scale, height):
     """The edges of one polygon that cross a sample row of the raster, sorted by first row.
 
     `offsets` are its contours' starts in `units` plus the end. Returns
-    (table, edges, kept_for_topology), table a (7, k) int64 array whose column
-    e holds edge e's WINDING, ROW_START, ROW_END and ends X0, Y0 (lower), X1, Y1.
+    (table, edges, kept_for_topology), table a (9, k) int64 array whose column
+    e holds edge e's WINDING, ROW_START, ROW_END, ends X0, Y0 (lower), X1, Y1,
+    and the indices in `units` of those ends, LOWER and UPPER.
     """
-    table = np.empty((7, offsets[-1] - offsets[0]), np.int64)
+    table = np.empty((9, offsets[-1] - offsets[0]), np.int64)
     count = kept_for_topology = 0
     for c in range(offsets.shape[0] - 1):
         for i in range(offsets[c], offsets[c + 1]):
@@ -141,6 +143,7 @@ def edge_table(units, offsets, scale, height):
                 table[ROW_START, count], table[ROW_END, count] = row_start, row_end
                 table[X0, count], table[Y0, count] = units[lower, 0], units[lower, 1]
                 table[X1, count], table[Y1, count] = units[upper, 0], units[upper, 1]
+                table[LOWER, count], table[UPPER, count] = lower, upper
                 count += 1
     order = np.argsort(table[ROW_START, :count], kind="mergesort")
     return np.ascontiguousarray(table[:, order]), offsets[-1] - offsets[0], kept_for_topology

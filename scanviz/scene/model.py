@@ -13,16 +13,22 @@ mesh sets one for it, else its face's, else the object's.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from .faces import face_corners
+
 
 def _finite_vector(name: str, value: object, size: int) -> tuple[float, ...]:
     try:
-        vector = tuple(float(v) for v in value)  # type: ignore[union-attr]
-    except (TypeError, ValueError):
+        items = list(value)  # type: ignore[call-overload]
+    except TypeError:
         raise TypeError(f"{name!r} must be {size} numbers; got {value!r}") from None
+    if any(isinstance(v, bool | str | bytes) or not isinstance(v, numbers.Real) for v in items):
+        raise TypeError(f"{name!r} must be {size} numbers; got {value!r}")
+    vector = tuple(float(v) for v in items)
     if len(vector) != size:
         raise ValueError(f"{name!r} must have {size} components; got {len(vector)}")
     if not all(math.isfinite(v) for v in vector):
@@ -30,10 +36,13 @@ def _finite_vector(name: str, value: object, size: int) -> tuple[float, ...]:
     return vector
 
 
-def _number(name: str, value: object, low: float, high: float = math.inf) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float):
+def _number(
+    name: str, value: object, low: float, high: float = math.inf, *, infinite: bool = False
+) -> float:
+    """`value` as a float in [low, high]; +inf passes only where `infinite` allows it."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name!r} must be a number; got {value!r}")
-    if not (math.isfinite(value) or value == high == math.inf):
+    if not (math.isfinite(value) or (infinite and value == math.inf)):
         raise ValueError(f"{name!r} must be finite; got {value}")
     if not low <= value <= high:
         raise ValueError(f"{name!r} must be in [{low}, {high}]; got {value}")
@@ -81,6 +90,10 @@ def _array(name: str, value: object, dtype, columns: int | None) -> np.ndarray:
         raise TypeError(
             f"{name!r} must be an array of numbers; got {type(value).__name__}"
         ) from None
+    if array.dtype.kind == "i" and array.size:
+        given = np.asarray(value)  # np.array([1.7], dtype=int) truncates silently
+        if given.dtype.kind not in "iu":
+            raise TypeError(f"{name!r} must hold integers; got {given.dtype} {given.tolist()}")
     if columns is not None and (array.ndim != 2 or array.shape[1] != columns):
         raise ValueError(f"{name!r} must be an (N, {columns}) array; got shape {array.shape}")
     if array.dtype.kind == "f" and not np.isfinite(array).all():
@@ -117,16 +130,9 @@ class Mesh:
     def __post_init__(self) -> None:
         positions = _array("positions", self.positions, np.float64, 3)
         object.__setattr__(self, "positions", positions)
-        faces = []
-        for f, face in enumerate(self.faces):
-            indices = _array(f"faces[{f}]", face, np.int64, None).reshape(-1)
-            if len(indices) < 3:
-                raise ValueError(f"'faces[{f}]' has {len(indices)} vertices; a face needs >= 3")
-            if indices.min() < 0 or indices.max() >= len(positions):
-                raise ValueError(
-                    f"'faces[{f}]' indexes outside 0..{len(positions) - 1}: {indices.tolist()}"
-                )
-            faces.append(indices)
+        corners = face_corners(self.faces, len(positions))  # validates every face at once
+        corners.corner.setflags(write=False)
+        faces = np.split(corners.corner, corners.starts[1:]) if len(corners.starts) else []
         object.__setattr__(self, "faces", tuple(faces))
         if self.normals is not None:
             normals = _array("normals", self.normals, np.float64, 3)
@@ -204,7 +210,7 @@ class Camera:
                 f"'projection' must be 'perspective' or 'orthographic'; got {self.projection!r}"
             )
         near = _number("near", self.near, 0.0 if self.projection == "perspective" else -math.inf)
-        far = _number("far", self.far, -math.inf)
+        far = _number("far", self.far, -math.inf, infinite=self.projection == "perspective")
         if self.projection == "perspective" and near <= 0:
             raise ValueError(f"'near' must be > 0 for a perspective camera; got {near}")
         if not near < far:
@@ -229,7 +235,7 @@ class Light:
     kind: str = "directional"
     color: tuple[float, float, float] = (1.0, 1.0, 1.0)
     position: tuple[float, float, float] | None = None
-    direction: tuple[float, float, float] | None = (0.0, 0.0, -1.0)
+    direction: tuple[float, float, float] | None = None  # directional default: (0, 0, -1)
 
     def __post_init__(self) -> None:
         if self.kind not in ("point", "directional"):
@@ -241,12 +247,12 @@ class Light:
         if self.kind == "point":
             if self.position is None:
                 raise ValueError("a point light needs a 'position'")
+            if self.direction is not None:
+                raise ValueError("a point light takes a 'position', not a 'direction'")
             object.__setattr__(self, "position", _finite_vector("position", self.position, 3))
             object.__setattr__(self, "direction", None)
         else:
-            if self.direction is None:
-                raise ValueError("a directional light needs a 'direction'")
-            direction = _finite_vector("direction", self.direction, 3)
+            direction = _finite_vector("direction", self.direction or (0.0, 0.0, -1.0), 3)
             if not any(direction):
                 raise ValueError("'direction' must not be the zero vector")
             object.__setattr__(self, "direction", direction)

@@ -1,0 +1,416 @@
+"""The pipeline: scene -> cull -> transform -> clip -> attributes -> z-buffer -> shade -> image.
+
+`render` plans the work first (which stages can change the image, which can
+be skipped and why), then runs each stage as a plain function over arrays.
+With a tracer every stage records its events; without one the compiled
+kernels run and nothing is recorded.
+
+Shading is deferred: the z-buffer keeps, per pixel, the interpolated
+attributes of the visible fragment, and the shading model runs once per
+visible pixel (Phong, Gooch) or per vertex before rasterization (Gouraud) or
+per polygon (flat). For opaque surfaces this gives the image a forward
+renderer gives, without shading fragments that are later hidden.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
+from .raster.api import as_tracer
+from .scene.faces import FaceCorners, face_corners
+from .scene.model import Scene
+from .shading import face_normals, material_array, vertex_normals
+from .trace import Recorder, Trace
+from .transform import classify, clip_from_eye, clip_polygon, cull_faces, eye_from_world
+from .visibility import ScreenPolygons, zbuffer
+
+SHADINGS = ("flat", "gouraud", "phong", "gooch")
+VISIBILITIES = ("zbuffer",)
+# Per-vertex attributes each shading model interpolates.
+ATTRIBUTES = {
+    "flat": 0,
+    "gouraud": 3,
+    "phong": 15,
+    "gooch": 15,
+}  # phong: normal, position, material
+
+
+@dataclass(frozen=True)
+class Stage:
+    name: str
+    runs: bool
+    why: str
+
+
+@dataclass(frozen=True)
+class RenderPlan:
+    """Which stages run for this scene and which are skipped, with the reason."""
+
+    stages: tuple[Stage, ...]
+
+    def __str__(self) -> str:
+        width = max(len(s.name) for s in self.stages)
+        return "\n".join(
+            f"{'run ' if s.runs else 'skip'}  {s.name:<{width}}  {s.why}" for s in self.stages
+        )
+
+    def runs(self, name: str) -> bool:
+        return any(s.name == name and s.runs for s in self.stages)
+
+
+@dataclass
+class RenderStats:
+    """What ran: polygon counts through the stages, and the z-buffer's work."""
+
+    objects: int = 0
+    polygons_in: int = 0
+    culled: int = 0
+    off_screen: int = 0
+    clipped: int = 0
+    accepted: int = 0
+    polygons_drawn: int = 0
+    rows_scanned: int = 0
+    spans: int = 0
+    fragments: int = 0
+    depth_passed: int = 0
+    depth_failed: int = 0
+    shaded_vertices: int = 0
+    shaded_pixels: int = 0
+    path: str = "compiled"
+
+
+@dataclass(frozen=True)
+class RenderResult:
+    """image (H, W, 3) float64 in [0, 1], row 0 at the bottom; depth (H, W) float64 (+inf: empty);
+    polygon (H, W) int64 index into the drawn polygons (-1: background)."""
+
+    image: np.ndarray
+    depth: np.ndarray
+    polygon: np.ndarray
+    stats: RenderStats
+    plan: RenderPlan
+    trace: Trace | None = field(default=None)
+
+
+@dataclass
+class _Prepared:
+    """The scene after culling, transformation and clipping: what the z-buffer draws."""
+
+    polygons: ScreenPolygons
+    flat_colors: np.ndarray  # (P, 3) for flat shading, else (P, 0)
+    stats: RenderStats
+    stages: list[Stage]
+
+
+@dataclass(frozen=True)
+class _ObjectInWorld:
+    """One object's faces in world space, with per-corner normals and material rows."""
+
+    world: np.ndarray  # (V, 3) positions
+    faces: tuple[np.ndarray, ...]  # counter-clockwise in world space
+    flat_faces: FaceCorners  # the same faces flattened once, for every stage
+    sizes: np.ndarray  # (F,) vertices per face
+    corners: np.ndarray  # (sum sizes,) vertex index of each face corner
+    face_normals: np.ndarray  # (F, 3) unit
+    corner_normals: np.ndarray  # (sum sizes, 3) unit
+    palette: np.ndarray  # (1 + materials, 9): row 0 is the object's material
+    face_material: np.ndarray  # (F,) palette row: polygon level
+    corner_material: np.ndarray  # (sum sizes,) palette row: vertex level, inherited
+
+
+def _object_in_world(obj) -> _ObjectInWorld:
+    mesh, matrix = obj.mesh, obj.world_from_model
+    world = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
+    # A mirroring transform turns counter-clockwise faces clockwise: reverse them back.
+    faces = mesh.faces if np.linalg.det(matrix[:3, :3]) >= 0 else tuple(f[::-1] for f in mesh.faces)
+    flat_faces = face_corners(faces, len(world))
+    corners, face_of_corner = flat_faces.corner, flat_faces.face
+    sizes = np.diff(np.append(flat_faces.starts, len(corners)))
+    faces_n = face_normals(world, flat_faces)
+    if mesh.normals is not None:
+        normals = mesh.normals @ np.linalg.inv(matrix[:3, :3])  # normals take the inverse transpose
+        normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
+        corner_normals = normals[corners]
+    elif mesh.smooth:
+        corner_normals = vertex_normals(world, flat_faces)[corners]
+    else:
+        corner_normals = faces_n[face_of_corner]
+    face_material = np.zeros(len(sizes), np.int64)
+    if mesh.face_materials is not None:
+        face_material = np.where(mesh.face_materials >= 0, mesh.face_materials + 1, 0)
+    corner_material = face_material[face_of_corner]
+    if mesh.vertex_materials is not None:
+        own = mesh.vertex_materials[corners]
+        corner_material = np.where(own >= 0, own + 1, corner_material)
+    palette = material_array((obj.material, *mesh.materials))
+    return _ObjectInWorld(
+        world,
+        faces,
+        flat_faces,
+        sizes,
+        corners,
+        faces_n,
+        corner_normals,
+        palette,
+        face_material,
+        corner_material,
+    )
+
+
+def _viewer(camera):
+    """(eye, view_dir) for `illuminate`: the eye point, or the direction toward an orthographic viewer."""
+    if camera.projection == "perspective":
+        return np.array(camera.eye), None
+    toward = np.subtract(camera.eye, camera.look_at)
+    return None, toward / np.linalg.norm(toward)
+
+
+def _lit(scene, positions, normals, materials):
+    from .shading import illuminate
+
+    eye, view_dir = _viewer(scene.camera)
+    return illuminate(
+        positions,
+        normals,
+        materials,
+        eye=eye,
+        view_dir=view_dir,
+        lights=scene.lights,
+        ambient_light=np.array(scene.ambient),
+    )
+
+
+def prepare(
+    scene: Scene, width: int, height: int, *, shading: str, cull: bool | None, tracer=None
+) -> _Prepared:
+    """Cull, transform and clip every object; return the screen polygons the z-buffer draws."""
+    clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
+    stats = RenderStats(objects=len(scene.objects))
+    rows = {"xyzw": [], "values": [], "sizes": [], "flat": []}
+    closed_any = cull_ran = False
+    for index, obj in enumerate(scene.objects):
+        o = _object_in_world(obj)
+        world, faces, sizes, corners = o.world, o.faces, o.sizes, o.corners
+        stats.polygons_in += len(faces)
+        if tracer is not None:
+            from .transform import transform_vertices
+
+            transform_vertices(scene.camera, world, width, height, trace=tracer, object=index)
+        clip = np.hstack([world, np.ones((len(world), 1))]) @ clip_from_world.T
+        keep = np.ones(len(faces), bool)
+        closed_any |= obj.mesh.closed
+        if obj.mesh.closed if cull is None else cull:
+            cull_ran = True
+            culled, _ = cull_faces(scene.camera, world, o.flat_faces, trace=tracer)
+            keep &= ~culled
+            stats.culled += int(culled.sum())
+        verdict = classify(clip, o.flat_faces).astype(object)
+        verdict[~keep] = "culled"
+        stats.off_screen += int((verdict == "reject").sum())
+        stats.accepted += int((verdict == "accept").sum())
+        # Attributes per corner, by shading model.
+        if shading == "gouraud":
+            values = _lit(scene, world[corners], o.corner_normals, o.palette[o.corner_material])
+            stats.shaded_vertices += len(values)
+        elif shading in ("phong", "gooch"):
+            values = np.hstack([o.corner_normals, world[corners], o.palette[o.corner_material]])
+        else:
+            values = np.zeros((len(corners), 0))
+        flat = np.zeros((len(faces), 3 if shading == "flat" else 0))
+        if shading == "flat" and len(faces):
+            starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+            centroids = np.add.reduceat(world[corners], starts) / sizes[:, None]
+            flat = _lit(scene, centroids, o.face_normals, o.palette[o.face_material])
+        corner_keep = np.repeat(verdict == "accept", sizes)
+        rows["xyzw"].append(clip[corners][corner_keep])
+        rows["values"].append(values[corner_keep])
+        rows["sizes"].append(sizes[verdict == "accept"])
+        rows["flat"].append(flat[verdict == "accept"])
+        starts = np.concatenate([[0], np.cumsum(sizes)])
+        for f in np.flatnonzero(verdict == "clip"):  # drawn after the accepted faces of this object
+            points, attributes = clip_polygon(
+                clip[faces[f]], values[starts[f] : starts[f + 1]], trace=tracer, polygon=int(f)
+            )
+            stats.clipped += 1
+            if len(points) >= 3:
+                rows["xyzw"].append(points)
+                rows["values"].append(attributes)
+                rows["sizes"].append(np.array([len(points)]))
+                rows["flat"].append(flat[f : f + 1])
+            else:
+                stats.off_screen += 1
+    xyzw = np.concatenate(rows["xyzw"]) if rows["xyzw"] else np.zeros((0, 4))
+    sizes = (
+        np.concatenate(rows["sizes"]).astype(np.int64) if rows["sizes"] else np.zeros(0, np.int64)
+    )
+    k = ATTRIBUTES[shading]
+    values = np.concatenate(rows["values"]) if rows["values"] else np.zeros((0, k))
+    flat_colors = (
+        np.concatenate(rows["flat"]) if rows["flat"] else np.zeros((0, 3 if k == 0 else 0))
+    )
+    w = xyzw[:, 3]
+    screen = ScreenPolygons(
+        xy=np.column_stack([(xyzw[:, 0] / w + 1) / 2 * width, (xyzw[:, 1] / w + 1) / 2 * height]),
+        z=xyzw[:, 2] / w,
+        inv_w=1 / w,
+        values=values,
+        offsets=np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64),
+    )
+    stats.polygons_drawn = len(sizes)
+    stages = [
+        Stage(
+            "cull",
+            cull_ran,
+            "closed meshes: back faces removed"
+            if cull_ran
+            else ("cull=False" if cull is False else "no closed mesh: every face may be seen"),
+        ),
+        Stage(
+            "clip",
+            stats.clipped > 0,
+            f"{stats.clipped} polygons straddle the view volume"
+            if stats.clipped
+            else "every polygon trivially accepted or rejected",
+        ),
+    ]
+    return _Prepared(screen, flat_colors, stats, stages)
+
+
+def render(
+    scene: Scene,
+    width: int,
+    height: int,
+    *,
+    shading: str = "phong",
+    visibility: str = "zbuffer",
+    sample: str = "corner",
+    subpixel_bits: int | None = 8,
+    perspective_correct: bool = True,
+    cull: bool | None = None,
+    trace: object = None,
+) -> RenderResult:
+    """Render a scene through the classic pipeline.
+
+    Parameters
+    ----------
+    scene : Scene
+        See `scanviz.scene` and `scanviz.io.load_scene` ("builtin:sphere", a JSON file, ...).
+    width, height : int
+        Raster size.
+    shading : {"flat", "gouraud", "phong", "gooch"}
+        Flat: one color per polygon. Gouraud: lit at vertices, colors
+        interpolated. Phong: normals interpolated, lit per pixel. Gooch: tone
+        shading per pixel.
+    visibility : {"zbuffer"}
+    sample, subpixel_bits
+        As in `scanviz.scan_convert`.
+    perspective_correct : bool
+        Interpolate attributes with 1/w (default) or affinely in screen space.
+    cull : bool or None
+        Back-face culling; None culls closed meshes only.
+    trace : None, True, or Tracer
+        None runs the compiled kernels; a tracer runs the traced references.
+
+    Returns
+    -------
+    RenderResult
+    """
+    width, height = check_raster_size(width, height)
+    check_choice("shading", shading, SHADINGS)
+    check_choice("visibility", visibility, VISIBILITIES)
+    check_choice("sample", sample, SAMPLE_MODES)
+    check_subpixel_bits(subpixel_bits)
+    if not isinstance(scene, Scene):
+        raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
+    tracer = as_tracer(trace)
+    prepared = prepare(scene, width, height, shading=shading, cull=cull, tracer=tracer)
+    stats = prepared.stats
+    result = zbuffer(
+        prepared.polygons,
+        width,
+        height,
+        sample=sample,
+        subpixel_bits=subpixel_bits,
+        perspective=perspective_correct,
+        trace=tracer,
+    )
+    z = result.stats
+    stats.rows_scanned, stats.spans, stats.fragments = z.rows_scanned, z.spans, z.fragments
+    stats.depth_passed, stats.depth_failed, stats.path = z.depth_passed, z.depth_failed, z.path
+    image = np.empty((height, width, 3))
+    image[...] = scene.background
+    visible = result.polygon >= 0
+    if shading == "flat":
+        image[visible] = prepared.flat_colors[result.polygon[visible]]
+    elif shading == "gouraud":
+        image[visible] = result.values[visible]
+    else:
+        image[visible] = _shade_pixels(scene, shading, result.values[visible])
+        stats.shaded_pixels = int(visible.sum())
+    transparent = any(
+        not o.material.opaque or any(not m.opaque for m in o.mesh.materials) for o in scene.objects
+    )
+    stages = [
+        Stage("transform", True, "world -> eye -> clip -> NDC -> display"),
+        *prepared.stages,
+        Stage(
+            "shade vertices",
+            shading == "gouraud",
+            "Gouraud lights each vertex" if shading == "gouraud" else f"{shading} shading",
+        ),
+        Stage(
+            "shade pixels",
+            shading in ("phong", "gooch"),
+            "per visible pixel only (deferred)"
+            if shading in ("phong", "gooch")
+            else f"{shading} shading",
+        ),
+        Stage(
+            "z-buffer",
+            True,
+            "opaque visibility, compiled kernel" if tracer is None else "traced reference",
+        ),
+        Stage(
+            "a-buffer",
+            False,
+            "transparency ignored by the z-buffer"
+            if transparent
+            else "opaque scene without anti-aliasing",
+        ),
+        Stage(
+            "trace",
+            tracer is not None,
+            "recording events" if tracer is not None else "no tracer: nothing recorded",
+        ),
+    ]
+    recorded = tracer.trace() if isinstance(tracer, Recorder) else None
+    return RenderResult(
+        np.clip(image, 0, 1),
+        result.depth,
+        result.polygon,
+        stats,
+        RenderPlan(tuple(stages)),
+        recorded,
+    )
+
+
+def _shade_pixels(scene: Scene, shading: str, values: np.ndarray) -> np.ndarray:
+    """Colors of visible pixels from their interpolated normal, position and material."""
+    normals, positions, materials = values[:, 0:3], values[:, 3:6], values[:, 6:15]
+    if shading == "phong":
+        return _lit(scene, positions, normals, materials)
+    from .shading import gooch
+
+    eye, view_dir = _viewer(scene.camera)
+    # Gooch tones are defined for one light; without any, light from the viewer (a headlight).
+    light = scene.lights[0] if scene.lights else _headlight(scene.camera)
+    return gooch(positions, normals, materials, eye, light, view_dir=view_dir)
+
+
+def _headlight(camera):
+    from .scene.model import Light
+
+    return Light(kind="directional", direction=tuple(np.subtract(camera.look_at, camera.eye)))

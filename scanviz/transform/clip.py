@@ -1,0 +1,201 @@
+"""Clipping polygons to the view volume in homogeneous clip space (Sutherland-Hodgman).
+
+A clip-space point (x, y, z, w) is inside the view volume iff its signed
+distance to each of six planes is >= 0 (see `scanviz.transform.viewing`)::
+
+    near    z          far     w - z
+    left    w + x      right   w - x
+    bottom  w + y      top     w - y
+
+Each distance is linear in the homogeneous point, so along an edge from P to
+Q it is ``d(t) = d_P + t (d_Q - d_P)`` and the edge crosses the plane at
+``t = d_P / (d_P - d_Q)``. Attributes given with the vertices are
+interpolated with the same t, in clip space: an attribute linear in (x, y, z,
+w) stays exact, which is what perspective-correct interpolation needs later.
+Clipping before the divide also handles points at or behind the eye (w <= 0):
+the near plane z >= 0 removes them, and every point that survives has w > 0.
+
+Outcodes (Cohen-Sutherland) set bit i when a vertex is outside plane
+``CLIP_PLANES[i]``. A polygon whose outcodes are all 0 is trivially accepted
+and returned as is; one whose outcodes share a bit lies outside that plane
+and is trivially rejected. Only the planes some vertex is outside are clipped
+against: the others cannot cut a convex combination of inside points.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..trace.events import PolygonClipped
+from ._checks import as_points, check_tracer, flatten_faces
+
+CLIP_PLANES = ("near", "far", "left", "right", "bottom", "top")
+
+# One row per plane: signed distance = row . (x, y, z, w), >= 0 inside.
+PLANE_DISTANCES = np.array(
+    [
+        [0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, -1.0, 1.0],
+        [1.0, 0.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0, 1.0],
+        [0.0, 1.0, 0.0, 1.0],
+        [0.0, -1.0, 0.0, 1.0],
+    ]
+)
+_PLANE_AXIS = (2, 2, 0, 0, 1, 1)  # the coordinate each plane bounds
+
+
+def _outcodes(points: np.ndarray) -> np.ndarray:
+    outside = points @ PLANE_DISTANCES.T < 0
+    return outside.astype(np.int64) @ (1 << np.arange(len(CLIP_PLANES)))
+
+
+def outcodes(clip_points: object) -> np.ndarray:
+    """Which planes each point is outside of: bit i set for ``CLIP_PLANES[i]``.
+
+    Parameters
+    ----------
+    clip_points : (N, 4) array_like of float
+
+    Returns
+    -------
+    (N,) ndarray of int64
+        0 for a point inside the view volume (boundary included).
+
+    Examples
+    --------
+    >>> outcodes([[0, 0, 0.5, 1], [2, 0, 0.5, 1], [-2, 3, -1, 1], [1, 1, 1, 1]]).tolist()
+    [0, 8, 37, 0]
+    """
+    return _outcodes(as_points("clip_points", clip_points, (4,)))
+
+
+def classify(clip_points: object, faces: object) -> np.ndarray:
+    """Trivial accept / reject of every face by its vertices' outcodes, so work can be skipped.
+
+    Parameters
+    ----------
+    clip_points : (V, 4) array_like of float
+    faces : (F, k) array_like of int, or sequence of (k_i,) array_like of int, k_i >= 3
+
+    Returns
+    -------
+    (F,) ndarray of str
+        "accept" (all vertices inside), "reject" (all outside one plane) or
+        "clip" (run `clip_polygon`, which may still reject it).
+
+    Examples
+    --------
+    >>> points = [[0, 0, 0.5, 1], [0.5, 0, 0.5, 1], [0, 0.5, 0.5, 1], [3, 0, 0.5, 1], [3, 1, 0.5, 1]]
+    >>> classify(points, [[0, 1, 2], [1, 3, 4], [3, 4, 4]]).tolist()
+    ['accept', 'clip', 'reject']
+    """
+    codes = outcodes(clip_points)
+    indices, starts = flatten_faces(faces, len(codes))
+    if not len(starts):
+        return np.empty(0, dtype="<U6")
+    all_outside = np.bitwise_and.reduceat(codes[indices], starts)
+    any_outside = np.bitwise_or.reduceat(codes[indices], starts)
+    return np.where(all_outside != 0, "reject", np.where(any_outside == 0, "accept", "clip"))
+
+
+def _clip_to_plane(rows: np.ndarray, plane: int) -> np.ndarray:
+    """One Sutherland-Hodgman pass: rows are (x, y, z, w, attributes...) of a closed polygon."""
+    distance = rows[:, :4] @ PLANE_DISTANCES[plane]
+    start, start_distance = np.roll(rows, 1, axis=0), np.roll(distance, 1)
+    # The edge start -> vertex crosses the plane only on a strict sign change.
+    crossing = np.sign(start_distance) * np.sign(distance) < 0
+    # Interpolate from the inside end, so a shared edge gives the same point in both polygons.
+    start_inside = start_distance[crossing] > 0
+    inner = np.where(start_inside[:, None], start[crossing], rows[crossing])
+    outer = np.where(start_inside[:, None], rows[crossing], start[crossing])
+    d_inner = np.where(start_inside, start_distance[crossing], distance[crossing])
+    d_outer = np.where(start_inside, distance[crossing], start_distance[crossing])
+    t = d_inner / (d_inner - d_outer)
+    new = inner + t[:, None] * (outer - inner)
+    axis, coefficients = _PLANE_AXIS[plane], PLANE_DISTANCES[plane]
+    new[:, axis] = -coefficients[3] * new[:, 3] / coefficients[axis]  # exactly on the plane
+    # Each vertex contributes the crossing of the edge that ends at it, then itself if inside.
+    candidates = np.stack([rows, rows], axis=1)
+    candidates[crossing, 0] = new
+    keep = np.column_stack([crossing, distance >= 0])
+    return candidates[keep]
+
+
+def clip_polygon(clip_points: object, attributes: object = None, *, trace=None, polygon: int = 0):
+    """Clip a polygon to the view volume, interpolating its vertex attributes.
+
+    Parameters
+    ----------
+    clip_points : (N, 4) array_like of float, N >= 3
+        Vertices in clip space, in order (any orientation; convex polygons
+        give convex results, others may gain zero-width bridges along planes).
+    attributes : (N, K) array_like of float, or None
+        Per-vertex values (colors, normals, texture coordinates, ...).
+    trace : Tracer or None
+        Receives one ``polygon_clipped`` event.
+    polygon : int
+        Label of the polygon in the event.
+
+    Returns
+    -------
+    clip_points : (M, 4) ndarray of float64
+    attributes : (M, K) ndarray of float64, or None if `attributes` is None
+        Trivially accepted input comes back as the very same arrays (a
+        float64 ndarray is not copied); a rejected polygon, or a result with
+        fewer than 3 vertices, gives M = 0.
+
+    Examples
+    --------
+    A triangle poking out of the right plane x = w loses its tip; the
+    attribute (here x itself) follows the new vertices:
+
+    >>> points = [[0, 0, 0.5, 1], [3, 0, 0.5, 1], [0, 0.5, 0.5, 1]]
+    >>> clipped, attributes = clip_polygon(points, [[0], [3], [0]])
+    >>> clipped
+    array([[0.        , 0.        , 0.5       , 1.        ],
+           [1.        , 0.        , 0.5       , 1.        ],
+           [1.        , 0.33333333, 0.5       , 1.        ],
+           [0.        , 0.5       , 0.5       , 1.        ]])
+    >>> attributes.ravel()
+    array([0., 1., 1., 0.])
+    """
+    trace = check_tracer(trace)
+    points = as_points("clip_points", clip_points, (4,), min_rows=3)
+    values = None
+    if attributes is not None:
+        values = as_points("attributes", attributes, None)
+        if len(values) != len(points):
+            raise ValueError(
+                f"'attributes' must have one row per vertex ({len(points)}); got {len(values)}"
+            )
+    codes = _outcodes(points)
+    outside = int(np.bitwise_or.reduce(codes))
+    counts: list[int] = []
+    if not outside:
+        verdict = "accepted"  # every vertex inside: nothing to cut
+    else:
+        rows = points if values is None else np.hstack([points, values])
+        if np.bitwise_and.reduce(codes):
+            rows = rows[:0]  # every vertex outside one plane
+        else:
+            for plane in range(len(CLIP_PLANES)):
+                if outside >> plane & 1 and len(rows):
+                    rows = _clip_to_plane(rows, plane)
+                counts.append(len(rows))
+        if len(rows) < 3:
+            rows = rows[:0]  # a point or a segment covers nothing
+        verdict = "clipped" if len(rows) else "rejected"
+        points = np.ascontiguousarray(rows[:, :4])
+        values = None if values is None else np.ascontiguousarray(rows[:, 4:])
+    if trace is not None and trace.wants("polygon_clipped", polygon=polygon):
+        trace.emit(
+            PolygonClipped(
+                polygon=int(polygon),
+                verdict=verdict,
+                outcodes=tuple(codes.tolist()),
+                counts=tuple(counts),
+                vertices=tuple(tuple(row) for row in points.tolist()),
+            )
+        )
+    return points, values

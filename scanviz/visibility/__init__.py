@@ -1,0 +1,5 @@
+"""Visibility: the z-buffer (traced reference and compiled twin)."""
+
+from .zbuffer import ScreenPolygons, ZBufferResult, ZBufferStats, zbuffer
+
+__all__ = ["ScreenPolygons", "ZBufferResult", "ZBufferStats", "zbuffer"]
