@@ -1,0 +1,200 @@
+"""The whole pipeline: render() against independent expectations, traced == compiled, plan, CLI."""
+
+import dataclasses
+
+import matplotlib.image
+import numpy as np
+import pytest
+
+from scanviz.cli import main
+from scanviz.render import render
+from scanviz.scene import Light, Material, Scene
+from scanviz.scene.builtin import builtin_scene
+from scanviz.trace import Recorder
+
+RED, GREEN, BLUE = (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
+
+
+def point_in_triangle(p, a, b, c):
+    """Exact corner-sample test for small integer triangles via the ownership rule (p + (e, e^2))."""
+
+    def side(u, v):
+        e = (v[0] - u[0]) * (p[1] - u[1]) - (v[1] - u[1]) * (p[0] - u[0])
+        return e if e else (-(v[1] - u[1]) or (v[0] - u[0]))  # first nonzero of (E, dE/dx, dE/dy)
+
+    signs = [np.sign(side(a, b)), np.sign(side(b, c)), np.sign(side(c, a))]
+    return all(s > 0 for s in signs) or all(s < 0 for s in signs)
+
+
+def test_umbc_zbuffer_example_visible_polygon_per_pixel():
+    # Slide polygons in screen space; smaller z is nearer. The green quad (z = 9) is behind
+    # everything; the red triangle (z = 5) is in front of it; the blue triangle's depth
+    # varies from 3 to 8, so red and blue cross.
+    result = render(builtin_scene("umbc_zbuffer"), 12, 12, shading="flat")
+    red = [(1, 1), (7, 7), (1, 7)]
+    blue = [(2, 6, 3), (2, 3, 8), (7, 3, 3)]
+    for y in range(12):
+        for x in range(12):
+            candidates = []
+            if point_in_triangle((x, y), *red):
+                candidates.append((5.0, 0, RED))
+            if point_in_triangle((x, y), *[v[:2] for v in blue]):
+                # plane through the blue vertices: z = 3 + 5 * (6 - y) / 3 ... solved exactly:
+                (x0, y0, z0), (x1, y1, z1), (x2, y2, z2) = blue
+                n = np.cross(np.subtract(blue[1], blue[0]), np.subtract(blue[2], blue[0]))
+                z = z0 - (n[0] * (x - x0) + n[1] * (y - y0)) / n[2]
+                candidates.append((z, 2, BLUE))
+            if 3 <= x < 10 and 5 <= y < 9:
+                candidates.append((9.0, 1, GREEN))
+            expected = min(candidates)[2] if candidates else (0.0, 0.0, 0.0)
+            assert tuple(result.image[y, x]) == pytest.approx(expected), (x, y)
+
+
+@pytest.mark.parametrize("shading", ["flat", "gouraud", "phong", "gooch"])
+@pytest.mark.parametrize("name", ["sphere", "function_surface"])
+def test_traced_path_gives_the_compiled_image(name, shading):
+    scene = builtin_scene(name)
+    compiled = render(scene, 40, 40, shading=shading)
+    traced = render(
+        scene, 40, 40, shading=shading, trace=Recorder(kinds=["depth_test"], region=(0, 0, 4, 4))
+    )
+    assert compiled.stats.path == "compiled" and traced.stats.path == "reference"
+    np.testing.assert_allclose(traced.image, compiled.image, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(traced.polygon, compiled.polygon)
+    np.testing.assert_allclose(traced.depth, compiled.depth, rtol=0, atol=1e-12)
+    assert dataclasses.replace(traced.stats, path="x") == dataclasses.replace(
+        compiled.stats, path="x"
+    )
+
+
+def test_gouraud_of_a_constant_color_is_constant():
+    sphere = builtin_scene("sphere")
+    flat_white = Material(color=(0.6, 0.5, 0.4), ambient=1.0, diffuse=0.0, specular=0.0)
+    obj = dataclasses.replace(sphere.objects[0], material=flat_white)
+    scene = dataclasses.replace(sphere, objects=(obj,), lights=())
+    affine = render(scene, 64, 64, shading="gouraud", perspective_correct=False)
+    covered = affine.polygon >= 0
+    assert covered.sum() > 1000
+    np.testing.assert_array_equal(np.unique(affine.image[covered], axis=0), [[0.6, 0.5, 0.4]])
+    # Perspective-correct: (c / w) interpolated over (1 / w) interpolated is c up to rounding.
+    correct = render(scene, 64, 64, shading="gouraud")
+    np.testing.assert_allclose(
+        correct.image[covered],
+        np.broadcast_to([0.6, 0.5, 0.4], (covered.sum(), 3)),
+        rtol=0,
+        atol=1e-15,
+    )
+
+
+def test_phong_highlight_lies_where_the_reflection_puts_it():
+    sphere = builtin_scene("sphere")
+    shiny = Material(color=(1, 1, 1), ambient=0.0, diffuse=0.0, specular=1.0, exponent=200.0)
+    light = Light(kind="directional", direction=(-1.0, -1.0, -2.0))
+    scene = dataclasses.replace(
+        sphere, objects=(dataclasses.replace(sphere.objects[0], material=shiny),), lights=(light,)
+    )
+    size = 200
+    result = render(scene, size, size, shading="phong")
+    y, x = np.unravel_index(np.argmax(result.image[..., 0]), (size, size))
+    # Analytic: on the unit sphere the highlight is where the normal bisects the directions to
+    # the light and to the eye; find it on a fine grid of sphere points, then project it.
+    theta, phi = np.meshgrid(np.linspace(0, np.pi, 1500), np.linspace(0, 2 * np.pi, 3000))
+    points = np.stack(
+        [np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)], -1
+    ).reshape(-1, 3)
+    to_light = -np.array(light.direction) / np.linalg.norm(light.direction)
+    to_eye = np.array(scene.camera.eye) - points
+    to_eye /= np.linalg.norm(to_eye, axis=1, keepdims=True)
+    halfway = to_light + to_eye
+    halfway /= np.linalg.norm(halfway, axis=1, keepdims=True)
+    best = points[np.argmax(np.einsum("ij,ij->i", points, halfway))]
+    eye_z = scene.camera.eye[2] - best[2]  # camera looks down -z from (0, 0, 4)
+    left, right, bottom, top = scene.camera.window
+    near = scene.camera.near
+    px = (best[0] * near / eye_z - left) / (right - left) * size
+    py = (best[1] * near / eye_z - bottom) / (top - bottom) * size
+    assert abs(x - px) <= 2 and abs(y - py) <= 2, ((x, y), (px, py))
+
+
+def test_draw_order_of_objects_does_not_matter_for_distinct_depths():
+    scene = builtin_scene("transparent_cube")
+    reversed_scene = dataclasses.replace(scene, objects=scene.objects[::-1])
+    a = render(scene, 64, 64, shading="phong")
+    b = render(reversed_scene, 64, 64, shading="phong")
+    np.testing.assert_array_equal(a.image, b.image)
+
+
+def test_plan_and_stats_say_what_ran():
+    sphere = render(builtin_scene("sphere"), 64, 64)
+    assert (
+        sphere.plan.runs("cull")
+        and sphere.plan.runs("z-buffer")
+        and not sphere.plan.runs("a-buffer")
+    )
+    assert "opaque scene without anti-aliasing" in str(sphere.plan)
+    s = sphere.stats
+    # From distance 4 a unit sphere shows a cap of (1 - 1/4) / 2 = 37.5% of its area: ~800 of
+    # its 1280 faces face away.
+    assert s.polygons_in == 1280 and 760 < s.culled < 850
+    assert s.polygons_drawn == s.polygons_in - s.culled - s.off_screen
+    assert (
+        s.depth_passed + s.depth_failed == s.fragments
+        and s.shaded_pixels == (sphere.polygon >= 0).sum()
+    )
+    surface = render(builtin_scene("function_surface"), 64, 64, shading="gouraud")
+    assert not surface.plan.runs("cull") and surface.stats.culled == 0
+    assert surface.stats.shaded_vertices > 0 and surface.stats.shaded_pixels == 0
+    cube = render(builtin_scene("transparent_cube"), 32, 32)
+    assert "transparency ignored by the z-buffer" in str(cube.plan)
+
+
+def test_clipping_runs_only_when_the_view_cuts_polygons():
+    sphere = builtin_scene("sphere")
+    close = dataclasses.replace(
+        sphere, camera=dataclasses.replace(sphere.camera, window=(-0.1, 0.1, -0.1, 0.1))
+    )
+    result = render(close, 48, 48)
+    assert result.plan.runs("clip") and result.stats.clipped > 0
+    assert (result.polygon >= 0).all()  # the sphere fills the narrowed view
+
+
+def test_bad_arguments_name_the_rule():
+    scene = builtin_scene("sphere")
+    with pytest.raises(ValueError, match="'shading' must be one of"):
+        render(scene, 8, 8, shading="toon")
+    with pytest.raises(ValueError, match="'visibility' must be one of"):
+        render(scene, 8, 8, visibility="painter")
+    with pytest.raises(TypeError, match="'scene' must be a scanviz.scene.Scene"):
+        render("builtin:sphere", 8, 8)
+
+
+def test_empty_scene_renders_the_background():
+    scene = Scene(objects=(), background=(0.2, 0.3, 0.4))
+    result = render(scene, 5, 4)
+    assert result.image.shape == (4, 5, 3) and (result.image == [0.2, 0.3, 0.4]).all()
+    assert np.isinf(result.depth).all() and (result.polygon == -1).all()
+
+
+def test_cli_render_writes_the_image_and_plan(tmp_path, capsys):
+    out = tmp_path / "sphere.png"
+    assert (
+        main(
+            [
+                "render",
+                "builtin:sphere",
+                "-o",
+                str(out),
+                "--width",
+                "48",
+                "--height",
+                "40",
+                "--plan",
+            ]
+        )
+        == 0
+    )
+    printed = capsys.readouterr().out
+    assert "run   z-buffer" in printed and "culled" in printed
+    image = matplotlib.image.imread(out)
+    assert image.shape[:2] == (40, 48)
+    assert main(["render", "builtin:nonesuch", "-o", str(out)]) == 2
