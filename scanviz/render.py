@@ -79,6 +79,7 @@ class RenderStats:
     depth_failed: int = 0
     shaded_vertices: int = 0
     shaded_pixels: int = 0
+    edge_pixels: int = 0
     path: str = "compiled"
 
 
@@ -290,6 +291,7 @@ def render(
     subpixel_bits: int | None = 8,
     perspective_correct: bool = True,
     cull: bool | None = None,
+    edges: bool = False,
     trace: object = None,
 ) -> RenderResult:
     """Render a scene through the classic pipeline.
@@ -311,6 +313,9 @@ def render(
         Interpolate attributes with 1/w (default) or affinely in screen space.
     cull : bool or None
         Back-face culling; None culls closed meshes only.
+    edges : bool
+        Draw silhouette, boundary and crease (> 30 degrees) edges in black over
+        the image with the midpoint line algorithm, where they are not hidden.
     trace : None, True, or Tracer
         None runs the compiled kernels; a tracer runs the traced references.
 
@@ -350,6 +355,10 @@ def render(
     else:
         image[visible] = _shade_pixels(scene, shading, result.values[visible])
         stats.shaded_pixels = int(visible.sum())
+        if shading == "phong" and tracer is not None and tracer.wants("illumination"):
+            _trace_illumination(scene, tracer, result)
+    if edges:
+        stats.edge_pixels = _draw_feature_edges(scene, image, result.depth, width, height)
     transparent = any(
         not o.material.opaque or any(not m.opaque for m in o.mesh.materials) for o in scene.objects
     )
@@ -414,3 +423,70 @@ def _headlight(camera):
     from .scene.model import Light
 
     return Light(kind="directional", direction=tuple(np.subtract(camera.look_at, camera.eye)))
+
+
+EDGE_DEPTH_TOLERANCE = 1e-4  # NDC depth by which an edge pixel may lie behind the surface drawn
+
+
+def _draw_feature_edges(scene: Scene, image, depth, width: int, height: int) -> int:
+    """Draw every object's silhouette, boundary and crease edges where the z-buffer shows them.
+
+    Edges with an end behind the eye plane are left out. Returns the pixels drawn.
+    """
+    from .raster.lines import midpoint_line
+    from .shading import feature_edges
+
+    clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
+    eye, view_dir = _viewer(scene.camera)
+    drawn = 0
+    for obj in scene.objects:
+        o = _object_in_world(obj)
+        found = feature_edges(o.world, o.flat_faces, eye, view_dir=view_dir)
+        pairs = np.concatenate([found["silhouette"], found["boundary"], found["crease"]])
+        clip = np.hstack([o.world, np.ones((len(o.world), 1))]) @ clip_from_world.T
+        for a, b in pairs:
+            if clip[a, 3] <= 0 or clip[b, 3] <= 0:
+                continue
+            ends = [
+                (
+                    (clip[v, 0] / clip[v, 3] + 1) / 2 * width,
+                    (clip[v, 1] / clip[v, 3] + 1) / 2 * height,
+                )
+                for v in (a, b)
+            ]
+            if max(abs(c) for end in ends for c in end) > 2**20:
+                continue
+            xs, ys = midpoint_line(*(int(np.floor(c)) for end in ends for c in end))
+            along = np.linspace(0.0, 1.0, len(xs))
+            z = clip[a, 2] / clip[a, 3] + along * (
+                clip[b, 2] / clip[b, 3] - clip[a, 2] / clip[a, 3]
+            )
+            inside = (xs >= 0) & (xs < width) & (ys >= 0) & (ys < height)
+            xs, ys, z = xs[inside], ys[inside], z[inside]
+            shown = z <= depth[ys, xs] + EDGE_DEPTH_TOLERANCE
+            image[ys[shown], xs[shown]] = 0.0
+            drawn += int(shown.sum())
+    return drawn
+
+
+def _trace_illumination(scene: Scene, tracer, result) -> None:
+    """Record the Phong terms of every visible pixel the tracer wants (same colors as drawn)."""
+    from .shading import illuminate_traced
+
+    eye, view_dir = _viewer(scene.camera)
+    for y, x in np.argwhere(result.polygon >= 0):
+        polygon = int(result.polygon[y, x])
+        if tracer.wants("illumination", polygon=polygon, y=int(y)):
+            values = result.values[y, x]
+            illuminate_traced(
+                values[3:6],
+                values[0:3],
+                values[6:15],
+                eye,
+                scene.lights,
+                np.array(scene.ambient),
+                trace=tracer,
+                pixel=(int(x), int(y)),
+                view_dir=view_dir,
+                polygon=polygon,
+            )

@@ -177,9 +177,10 @@ def _to_viewer(positions: np.ndarray, eye: object, view_dir: object) -> np.ndarr
         )
     if eye is not None:
         return _unit(_vector("eye", eye) - positions)[0]
-    direction, length = _unit(_vector("view_dir", view_dir)[None])
-    if not length[0] > 0:
+    view = _vector("view_dir", view_dir)
+    if not np.abs(view).max() > 0:
         raise ValueError("'view_dir' must not be the zero vector")
+    direction, _ = _unit(view[None] / np.abs(view).max())  # pre-scaled: tiny vectors keep a length
     return np.broadcast_to(direction, positions.shape)
 
 

@@ -76,7 +76,9 @@ def trace_table(events: Iterable[Event]) -> str:
                 _edge_line(e) for e in sorted(event.edges, key=lambda e: (e.bucket, e.edge))
             )
             continue
-        key = (getattr(event, "polygon", 0), getattr(event, "y", 0))
+        if not hasattr(event, "y"):  # not a per-row step of scan conversion
+            continue
+        key = (getattr(event, "polygon", 0), event.y)
         row = rows.setdefault(key, {"et": [], "aet": [], "spans": []})
         if event.kind == "edges_activated":
             row["et"] += [f"+e{e}" for e in event.edges]

@@ -50,7 +50,11 @@ def test_mesh_arrays_are_read_only_and_typed():
         ({"faces": [[0, 1]]}, ValueError, r"'faces\[0\]' has 2 vertices; a face needs >= 3"),
         ({"faces": [[0, 1, 3]]}, ValueError, r"'faces\[0\]' indexes outside 0..2"),
         ({"faces": [[0, 1, -1]]}, ValueError, r"'faces\[0\]' indexes outside 0..2"),
-        ({"faces": [[0, 1, 1.7]]}, TypeError, r"'faces\[0\]' must be a 1-D sequence of int indices"),
+        (
+            {"faces": [[0, 1, 1.7]]},
+            TypeError,
+            r"'faces\[0\]' must be a 1-D sequence of int indices",
+        ),
         ({"normals": [[0, 0, 1]]}, ValueError, "'normals' must have one row per position"),
         ({"face_materials": [0]}, ValueError, "'face_materials' must index 'materials'"),
         ({"vertex_materials": [-1, -1]}, ValueError, "'vertex_materials' must have 3 entries"),

@@ -412,3 +412,11 @@ def test_newell_normal_of_a_non_planar_quad_is_the_average_plane():
 def test_bad_faces_are_named(faces, error, message):
     with pytest.raises(error, match=message):
         face_normals(np.zeros((4, 3)), faces)
+
+
+def test_a_tiny_view_direction_is_still_a_direction():
+    # Regression: |view_dir| = 1e-200 underflowed to 0 in sqrt(dot) and was rejected as zero.
+    material = material_array([Material(ambient=0.1, diffuse=0.7, specular=0.0)])
+    args = (np.zeros((1, 3)), np.array([[0.0, 0.0, 1.0]]), material, None, (Light(),), np.ones(3))
+    tiny = illuminate(*args, view_dir=(0.0, 0.0, 1e-200))
+    np.testing.assert_array_equal(tiny, illuminate(*args, view_dir=(0.0, 0.0, 1.0)))
