@@ -431,13 +431,18 @@ def terrain(n: int = 160, seed: int = 0, roughness: float = 0.5) -> Mesh:
     heights = heights[: n + 1, : n + 1]
     heights = np.maximum(heights, np.quantile(heights, 0.25))
     heights = 0.5 * (heights - heights.min()) / max(np.ptp(heights), 1e-300)
-    bands = np.searchsorted([1e-12, 0.3, 0.42], heights.ravel(), side="right")
+    limits = [1e-12, 0.3, 0.42]  # water | grass | rock | snow
+    bands = np.searchsorted(limits, heights.ravel(), side="right")
     x, y = np.meshgrid(np.linspace(-1, 1, n + 1), np.linspace(-1, 1, n + 1))
+    faces = tuple(_triangulate(_grid_faces(n + 1, n + 1)))
+    # Polygons get the band of their mean height, so flat shading shows the bands too.
+    mean_heights = heights.ravel()[np.array(faces)].mean(axis=1)
     return Mesh(
         np.stack([x, y, heights], axis=-1).reshape(-1, 3),
-        tuple(_triangulate(_grid_faces(n + 1, n + 1))),
+        faces,
         smooth=True,
         closed=False,
+        face_materials=np.searchsorted(limits, mean_heights, side="right"),
         vertex_materials=bands,
         materials=_TERRAIN_MATERIALS,
     )
