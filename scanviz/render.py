@@ -28,7 +28,8 @@ from .transform import classify, clip_from_eye, clip_polygon, cull_faces, eye_fr
 from .visibility import ScreenPolygons, zbuffer
 
 SHADINGS = ("flat", "gouraud", "phong", "gooch")
-VISIBILITIES = ("zbuffer",)
+VISIBILITIES = ("zbuffer", "abuffer", "flawed")
+TRANSPARENCY = 7  # column of `transparency` in a material row (scanviz.shading.MATERIAL_FIELDS)
 # Per-vertex attributes each shading model interpolates.
 ATTRIBUTES = {
     "flat": 0,
@@ -94,6 +95,14 @@ class RenderResult:
     stats: RenderStats
     plan: RenderPlan
     trace: Trace | None = field(default=None)
+    alpha: np.ndarray | None = field(default=None)  # (H, W) packed coverage (a-buffer only)
+    abuffer: object = field(default=None)  # the a-buffer's result: .pixel(x, y) lists fragments
+
+    def fragments_at(self, x: int, y: int) -> tuple:
+        """The a-buffer's fragment list of pixel (x, y) after insertion (a-buffer renders only)."""
+        if self.abuffer is None:
+            raise ValueError("fragments_at needs a render with visibility='abuffer' or 'flawed'")
+        return self.abuffer.pixel(x, y)
 
 
 @dataclass
@@ -102,6 +111,8 @@ class _Prepared:
 
     polygons: ScreenPolygons
     flat_colors: np.ndarray  # (P, 3) for flat shading, else (P, 0)
+    polygon_object: np.ndarray  # (P,) index of the scene object each polygon came from
+    polygon_opacity: np.ndarray  # (P,) 1 - transparency of its polygon-level material
     stats: RenderStats
     stages: list[Stage]
 
@@ -190,7 +201,7 @@ def prepare(
     """Cull, transform and clip every object; return the screen polygons the z-buffer draws."""
     clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
     stats = RenderStats(objects=len(scene.objects))
-    rows = {"xyzw": [], "values": [], "sizes": [], "flat": []}
+    rows = {"xyzw": [], "values": [], "sizes": [], "flat": [], "object": [], "opacity": []}
     closed_any = cull_ran = False
     for index, obj in enumerate(scene.objects):
         o = _object_in_world(obj)
@@ -230,6 +241,9 @@ def prepare(
         rows["values"].append(values[corner_keep])
         rows["sizes"].append(sizes[verdict == "accept"])
         rows["flat"].append(flat[verdict == "accept"])
+        opacity = 1.0 - o.palette[o.face_material, TRANSPARENCY]
+        rows["object"].append(np.full(int((verdict == "accept").sum()), index))
+        rows["opacity"].append(opacity[verdict == "accept"])
         starts = np.concatenate([[0], np.cumsum(sizes)])
         for f in np.flatnonzero(verdict == "clip"):  # drawn after the accepted faces of this object
             points, attributes = clip_polygon(
@@ -241,6 +255,8 @@ def prepare(
                 rows["values"].append(attributes)
                 rows["sizes"].append(np.array([len(points)]))
                 rows["flat"].append(flat[f : f + 1])
+                rows["object"].append(np.array([index]))
+                rows["opacity"].append(opacity[f : f + 1])
             else:
                 stats.off_screen += 1
     xyzw = np.concatenate(rows["xyzw"]) if rows["xyzw"] else np.zeros((0, 4))
@@ -277,7 +293,11 @@ def prepare(
             else "every polygon trivially accepted or rejected",
         ),
     ]
-    return _Prepared(screen, flat_colors, stats, stages)
+    polygon_object = (
+        np.concatenate(rows["object"]).astype(np.int64) if rows["object"] else np.zeros(0, np.int64)
+    )
+    polygon_opacity = np.concatenate(rows["opacity"]) if rows["opacity"] else np.zeros(0)
+    return _Prepared(screen, flat_colors, polygon_object, polygon_opacity, stats, stages)
 
 
 def render(
@@ -292,6 +312,8 @@ def render(
     perspective_correct: bool = True,
     cull: bool | None = None,
     edges: bool = False,
+    mask: str = "8x8",
+    weights: str = "area",
     trace: object = None,
 ) -> RenderResult:
     """Render a scene through the classic pipeline.
@@ -306,7 +328,15 @@ def render(
         Flat: one color per polygon. Gouraud: lit at vertices, colors
         interpolated. Phong: normals interpolated, lit per pixel. Gooch: tone
         shading per pixel.
-    visibility : {"zbuffer"}
+    visibility : {"zbuffer", "abuffer", "flawed"}
+        The z-buffer (one sample per pixel); Carpenter's a-buffer (pixel masks,
+        exact areas, fragment lists and the packer: anti-aliased, with
+        transparency); or the flawed coverage-blending z-buffer of the thesis
+        §6.3, for comparison (it leaves seams between adjacent polygons).
+    mask : {"4x4", "8x4", "8x8"}
+        Sub-samples per pixel of the a-buffer's pixel masks.
+    weights : {"area", "mask"}
+        The packer weighs fragments by exact area or by mask bits.
     sample, subpixel_bits
         As in `scanviz.scan_convert`.
     perspective_correct : bool
@@ -328,10 +358,35 @@ def render(
     check_choice("visibility", visibility, VISIBILITIES)
     check_choice("sample", sample, SAMPLE_MODES)
     check_subpixel_bits(subpixel_bits)
+    check_choice("mask", mask, ("4x4", "8x4", "8x8"))
+    check_choice("weights", weights, ("area", "mask"))
     if not isinstance(scene, Scene):
         raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
     tracer = as_tracer(trace)
     prepared = prepare(scene, width, height, shading=shading, cull=cull, tracer=tracer)
+    stats = prepared.stats
+    options = {"subpixel_bits": subpixel_bits, "perspective": perspective_correct, "tracer": tracer}
+    if visibility == "zbuffer":
+        image, depth, polygon = _zbuffered(
+            scene, prepared, width, height, shading, sample, **options
+        )
+        alpha = abuffer = None
+    else:
+        image, depth, polygon, abuffer = _antialiased(
+            scene, prepared, width, height, shading, visibility, mask, weights, **options
+        )
+        alpha = abuffer.alpha
+    if edges:
+        stats.edge_pixels = _draw_feature_edges(scene, image, depth, width, height)
+    plan = _plan(scene, prepared, shading, visibility, edges, tracer)
+    recorded = tracer.trace() if isinstance(tracer, Recorder) else None
+    return RenderResult(np.clip(image, 0, 1), depth, polygon, stats, plan, recorded, alpha, abuffer)
+
+
+def _zbuffered(
+    scene, prepared, width, height, shading, sample, *, subpixel_bits, perspective, tracer
+):
+    """(image, depth, polygon) through the z-buffer, shading the visible pixels afterwards."""
     stats = prepared.stats
     result = zbuffer(
         prepared.polygons,
@@ -339,7 +394,7 @@ def render(
         height,
         sample=sample,
         subpixel_bits=subpixel_bits,
-        perspective=perspective_correct,
+        perspective=perspective,
         trace=tracer,
     )
     z = result.stats
@@ -357,11 +412,107 @@ def render(
         stats.shaded_pixels = int(visible.sum())
         if shading == "phong" and tracer is not None and tracer.wants("illumination"):
             _trace_illumination(scene, tracer, result)
-    if edges:
-        stats.edge_pixels = _draw_feature_edges(scene, image, result.depth, width, height)
+    return image, result.depth, result.polygon
+
+
+def _antialiased(
+    scene,
+    prepared,
+    width,
+    height,
+    shading,
+    visibility,
+    mask,
+    weights,
+    *,
+    subpixel_bits,
+    perspective,
+    tracer,
+):
+    """(image, depth, polygon, a-buffer result): fragments per pixel, resolved by the a-buffer.
+
+    Every fragment is shaded at its pixel center (the a-buffer needs every
+    fragment's color before it knows which are seen). `depth` and `polygon`
+    are those of each pixel's nearest fragment.
+    """
+    from .abuffer import MASK_LAYOUTS, Fragments, resolve
+    from .abuffer.fragments import polygon_fragments
+
+    polygons, stats = prepared.polygons, prepared.stats
+    parts, owners = [], []
+    for p in range(len(polygons.offsets) - 1):
+        rows = slice(polygons.offsets[p], polygons.offsets[p + 1])
+        found = polygon_fragments(
+            polygons.xy[rows],
+            polygons.z[rows],
+            polygons.inv_w[rows],
+            polygons.values[rows],
+            width,
+            height,
+            mask=mask,
+            subpixel_bits=subpixel_bits,
+            perspective=perspective,
+        )
+        if found is not None:
+            parts.append(found)
+            owners.append(np.full(len(found.xs), p))
+    owner = np.concatenate(owners) if owners else np.zeros(0, np.int64)
+    values = (
+        np.concatenate([f.values for f in parts])
+        if parts
+        else np.zeros((0, polygons.values.shape[1]))
+    )
+    if shading == "flat":
+        colors = prepared.flat_colors[owner]
+    elif shading == "gouraud":
+        colors = values
+    else:
+        colors = _shade_pixels(scene, shading, values)
+        stats.shaded_pixels = len(owner)
+
+    def joined(field, dtype):
+        return (
+            np.concatenate([getattr(f, field) for f in parts]).astype(dtype)
+            if parts
+            else np.zeros(0, dtype)
+        )
+
+    fragments = Fragments(
+        x=joined("xs", np.int64),
+        y=joined("ys", np.int64),
+        polygon=owner.astype(np.int64),
+        object=prepared.polygon_object[owner],
+        mask=joined("masks", np.uint64),
+        area=joined("areas", np.float64),
+        zmin=joined("zmin", np.float64),
+        zmax=joined("zmax", np.float64),
+        color=np.asarray(colors, dtype=np.float64).reshape(-1, 3),
+        opacity=prepared.polygon_opacity[owner],
+    )
+    result = resolve(
+        fragments,
+        width,
+        height,
+        layout=MASK_LAYOUTS[mask],
+        weights=weights,
+        background=scene.background,
+        mode="abuffer" if visibility == "abuffer" else "flawed",
+        trace=tracer,
+    )
+    stats.fragments, stats.path = len(owner), result.stats.path
+    depth = np.full((height, width), np.inf)
+    nearest = np.full((height, width), -1, np.int64)
+    order = np.lexsort((-fragments.zmin, fragments.x, fragments.y))  # per pixel, nearest last
+    depth[fragments.y[order], fragments.x[order]] = fragments.zmin[order]
+    nearest[fragments.y[order], fragments.x[order]] = owner[order]
+    return result.image, depth, nearest, result
+
+
+def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
     transparent = any(
         not o.material.opaque or any(not m.opaque for m in o.mesh.materials) for o in scene.objects
     )
+    deferred = shading in ("phong", "gooch") and visibility == "zbuffer"
     stages = [
         Stage("transform", True, "world -> eye -> clip -> NDC -> display"),
         *prepared.stages,
@@ -373,21 +524,36 @@ def render(
         Stage(
             "shade pixels",
             shading in ("phong", "gooch"),
-            "per visible pixel only (deferred)"
+            (
+                "per visible pixel only (deferred)"
+                if deferred
+                else "per fragment, at the pixel center"
+            )
             if shading in ("phong", "gooch")
             else f"{shading} shading",
         ),
         Stage(
             "z-buffer",
-            True,
-            "opaque visibility, compiled kernel" if tracer is None else "traced reference",
+            visibility == "zbuffer",
+            ("opaque visibility, compiled kernel" if tracer is None else "traced reference")
+            if visibility == "zbuffer"
+            else f"visibility={visibility!r}",
         ),
         Stage(
             "a-buffer",
-            False,
-            "transparency ignored by the z-buffer"
+            visibility == "abuffer",
+            "anti-aliasing: pixel masks, exact areas, fragment lists, packer"
+            if visibility == "abuffer"
+            else "coverage blending instead (the flawed z-buffer anti-aliasing)"
+            if visibility == "flawed"
+            else "transparency ignored by the z-buffer"
             if transparent
             else "opaque scene without anti-aliasing",
+        ),
+        Stage(
+            "feature edges",
+            edges,
+            "silhouettes and creases, midpoint lines, depth-tested" if edges else "edges=False",
         ),
         Stage(
             "trace",
@@ -395,15 +561,7 @@ def render(
             "recording events" if tracer is not None else "no tracer: nothing recorded",
         ),
     ]
-    recorded = tracer.trace() if isinstance(tracer, Recorder) else None
-    return RenderResult(
-        np.clip(image, 0, 1),
-        result.depth,
-        result.polygon,
-        stats,
-        RenderPlan(tuple(stages)),
-        recorded,
-    )
+    return RenderPlan(tuple(stages))
 
 
 def _shade_pixels(scene: Scene, shading: str, values: np.ndarray) -> np.ndarray:
