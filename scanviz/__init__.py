@@ -1,9 +1,13 @@
 """scanviz: step through the classic polygon rendering pipeline, exactly and fast.
 
-See ``DESIGN`` conventions in `scanviz.conventions`.
+The conventions (y up, pixel = unit square, lower-left corner sampling, the
+ownership rule for boundary samples) are in `scanviz.conventions`.
 """
 
+from .abuffer import area_coverage
 from .geometry import Polygon
+from .io import load_scene
+from .pipeline import RenderResult, render
 from .raster import (
     ScanResult,
     TriangleSamples,
@@ -18,13 +22,17 @@ from .trace import Recorder, Trace, Tracer
 __all__ = [
     "Polygon",
     "Recorder",
+    "RenderResult",
     "ScanResult",
     "Trace",
     "Tracer",
     "TriangleSamples",
+    "area_coverage",
     "fill_polygons",
+    "load_scene",
     "midpoint_line",
     "rasterize_triangles",
+    "render",
     "scan_convert",
     "triangle_samples",
 ]

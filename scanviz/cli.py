@@ -103,14 +103,14 @@ def _cmd_fill(args: argparse.Namespace) -> None:
 def _cmd_bench(args: argparse.Namespace) -> None:
     from .bench import run
 
-    run(args.suite, quick=args.quick)
+    run(args.suite, quick=args.quick, plot=args.plot)
 
 
 def _cmd_render(args: argparse.Namespace) -> None:
     import matplotlib.pyplot as plt
 
     from .io import load_scene
-    from .render import render
+    from .pipeline import render
 
     scene = load_scene(args.scene)
     result = render(scene, args.width, args.height, shading=args.shading, sample=args.sample)
@@ -150,8 +150,11 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--plan", action="store_true", help="print which stages run and why")
     render.set_defaults(run=_cmd_render)
     bench = commands.add_parser("bench", help="benchmarks: run time against peers and error")
-    bench.add_argument("suite", choices=["raster", "render"])
+    bench.add_argument("suite", choices=["raster", "render", "coverage"])
     bench.add_argument("--quick", action="store_true", help="smaller scenes, for a smoke test")
+    bench.add_argument(
+        "--plot", default="coverage.png", metavar="PATH", help="coverage: error-vs-time plot file"
+    )
     bench.set_defaults(run=_cmd_bench)
     return parser
 

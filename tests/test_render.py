@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from scanviz.cli import main
-from scanviz.render import render
+from scanviz.pipeline import render
 from scanviz.scene import Light, Material, Scene
 from scanviz.scene.builtin import builtin_scene
 from scanviz.trace import Recorder

@@ -10,7 +10,7 @@ import statistics
 import time
 from collections.abc import Callable
 
-SUITES = ("raster", "render")
+SUITES = ("raster", "render", "coverage")
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -25,8 +25,8 @@ def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float 
     return statistics.median(times)
 
 
-def run(suite: str, *, quick: bool = False) -> None:
-    """Run one benchmark suite and print its table."""
+def run(suite: str, *, quick: bool = False, plot: str | None = "coverage.png") -> None:
+    """Run one benchmark suite and print its table (`plot`: where "coverage" saves its plot)."""
     if suite == "raster":
         from .raster import run_raster
 
@@ -35,5 +35,9 @@ def run(suite: str, *, quick: bool = False) -> None:
         from .render import run_render
 
         run_render(quick=quick)
+    elif suite == "coverage":
+        from .coverage import run_coverage
+
+        run_coverage(quick=quick, plot=plot)
     else:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")

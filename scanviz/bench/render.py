@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..render import render
+from ..pipeline import render
 from ..scene.builtin import builtin_scene
 from ..transform import clip_from_eye, eye_from_world
 from . import best_time

@@ -196,7 +196,14 @@ def _lit(scene, positions, normals, materials):
 
 
 def prepare(
-    scene: Scene, width: int, height: int, *, shading: str, cull: bool | None, tracer=None
+    scene: Scene,
+    width: int,
+    height: int,
+    *,
+    shading: str,
+    cull: bool | None,
+    tracer=None,
+    transparent_visible: bool = False,
 ) -> _Prepared:
     """Cull, transform and clip every object; return the screen polygons the z-buffer draws."""
     clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
@@ -214,7 +221,9 @@ def prepare(
         clip = np.hstack([world, np.ones((len(world), 1))]) @ clip_from_world.T
         keep = np.ones(len(faces), bool)
         closed_any |= obj.mesh.closed
-        if obj.mesh.closed if cull is None else cull:
+        # Back faces of a transparent object show through it where the visibility can show them.
+        see_through = transparent_visible and not obj.material.opaque
+        if (obj.mesh.closed and not see_through) if cull is None else cull:
             cull_ran = True
             culled, _ = cull_faces(scene.camera, world, o.flat_faces, trace=tracer)
             keep &= ~culled
@@ -363,7 +372,15 @@ def render(
     if not isinstance(scene, Scene):
         raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
     tracer = as_tracer(trace)
-    prepared = prepare(scene, width, height, shading=shading, cull=cull, tracer=tracer)
+    prepared = prepare(
+        scene,
+        width,
+        height,
+        shading=shading,
+        cull=cull,
+        tracer=tracer,
+        transparent_visible=visibility == "abuffer",
+    )
     stats = prepared.stats
     options = {"subpixel_bits": subpixel_bits, "perspective": perspective_correct, "tracer": tracer}
     if visibility == "zbuffer":
