@@ -469,6 +469,8 @@ def _antialiased(
             mask=mask,
             subpixel_bits=subpixel_bits,
             perspective=perspective,
+            trace=tracer,
+            polygon_index=p,
         )
         if found is not None:
             parts.append(found)

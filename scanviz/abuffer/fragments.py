@@ -56,13 +56,24 @@ def polygon_fragments(
     mask: str = "8x8",
     subpixel_bits: int | None = 8,
     perspective: bool = True,
+    trace=None,
+    polygon_index: int = 0,
 ) -> PolygonFragments | None:
     """Fragments of the polygon with vertices `xy` (display pixels), or None if it touches no pixel."""
     try:
         polygon = Polygon(xy)
     except ValueError:  # fewer than 3 distinct vertices: no area, no samples
         return None
-    masks = pixel_masks(polygon, width, height, mask=mask, subpixel_bits=subpixel_bits)
+    traced = trace is not None and trace.wants("mask_buffer_row", polygon=polygon_index)
+    masks = pixel_masks(
+        polygon,
+        width,
+        height,
+        mask=mask,
+        subpixel_bits=subpixel_bits,
+        trace=trace if traced else None,
+        polygon_index=polygon_index,
+    )
     area_ys, area_xs, areas = pixel_areas(polygon, width, height, subpixel_bits=subpixel_bits)
     mask_keys = masks.ys * width + masks.xs
     area_keys = area_ys * width + area_xs
