@@ -1,0 +1,258 @@
+"""Inspect the a-buffer at one pixel: its masks, fragment list, packer steps and insertions.
+
+`ABufferInspector` takes a traced a-buffer render (``visibility="abuffer"``,
+a `Recorder` filtered to a region) and shows what the core recorded for the
+pixel you pick: each fragment's pixel mask as a grid, the fragment list, the
+packer's levels (``pixel_packed``) and a `Stepper` over the pixel's
+``fragment_inserted`` events with the pixelstruct before and after.
+"""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.patches import Rectangle
+
+from ..abuffer.masks import DEFAULT_MASK, mask_to_grid, popcount
+from ..pipeline import RenderResult
+from ..trace import Trace
+from ._common import html_table, new_figure, say, status_label, swatch
+from .stepper import Stepper, figure_widget, refresh_figure
+
+FRAGMENT_COLUMNS = ("#", "z", "zmax", "area", "bits", "color", "opacity", "object")
+PACK_COLUMNS = ("level", "branch", "z", "region bits", "weight Q(i+1)")
+PACK_COLUMNS += ("M_A bits", "A", "M_Q bits", "Q", "color x weight", "")
+MAX_GRIDS = 6  # mask grids drawn per pixel; the table lists every fragment
+
+
+def fragment_table(fragments, layout: str) -> str:
+    """An HTML table of a fragment list (`FragmentRecord`s), nearest first."""
+    return html_table(
+        FRAGMENT_COLUMNS,
+        [
+            (k, f.z, f.zmax, f.area, int(popcount(f.mask)), swatch(f.color), f.opacity, f.object)
+            for k, f in enumerate(fragments)
+        ],
+        raw=(5,),
+    )
+
+
+class FragmentInsertionView:
+    """One ``fragment_inserted`` event: the case, the incoming fragment, before and after.
+
+    Attributes
+    ----------
+    widget : ipywidgets.HTML
+        Everything as HTML tables (empty at step 0).
+    """
+
+    def __init__(self, trace: Trace, layout: str) -> None:
+        self.trace, self.layout = trace, layout
+        self.widget = widgets.HTML()
+
+    def show(self, step: int) -> None:
+        """Show the insertion done by event `step` (nothing at step 0)."""
+        if step == 0:
+            self.widget.value = "<i>step forward to insert this pixel's fragments one by one</i>"
+            return
+        event = self.trace[step - 1]
+        self.widget.value = (
+            f"<b>case {event.case}</b>: fragment {event.index} of polygon {event.polygon}"
+            + fragment_table([event.fragment], self.layout)
+            + f"<b>before</b> ({event.before_kind})"
+            + fragment_table(event.before, self.layout)
+            + f"<b>after</b> ({event.after_kind}, merged and discarded)"
+            + fragment_table(event.after, self.layout)
+        )
+
+
+class ABufferInspector:
+    """Pick a pixel of an a-buffer render and see its masks, fragments, packer and insertions.
+
+    Parameters
+    ----------
+    result : RenderResult
+        From ``render(..., visibility="abuffer", trace=Recorder(region=...))``.
+    pixel : (int, int), optional
+        The first pixel shown (default: the first one the packer recorded).
+    mask : {"4x4", "8x4", "8x8"}, optional
+        The mask layout of the render (default: read from the trace, else "8x8").
+
+    Attributes
+    ----------
+    widget : ipywidgets.VBox
+    x_box, y_box : ipywidgets.IntText
+        The picked pixel; clicking the image sets them.
+    fragments : ipywidgets.HTML
+        The pixel's fragment list after insertion.
+    packer : ipywidgets.HTML
+        The packer's steps (``pixel_packed``), deepest level first, and the result.
+    grids : list of matplotlib AxesImage
+        Mask grids of the first `MAX_GRIDS` fragments (`mask_to_grid`).
+    insertions : Stepper or None
+        Over the pixel's ``fragment_inserted`` events (None when none were recorded).
+    status : ipywidgets.HTML
+        Errors and what was not recorded.
+
+    Examples
+    --------
+    >>> from scanviz import Recorder, render
+    >>> from scanviz.scene.builtin import builtin_scene
+    >>> result = render(builtin_scene("transparent_cube"), 64, 64, shading="flat",
+    ...                 visibility="abuffer", trace=Recorder(region=(30, 30, 33, 33)))
+    >>> inspector = ABufferInspector(result, pixel=(31, 31))
+    >>> len(result.fragments_at(31, 31)), inspector.insertions.slider.max
+    (4, 4)
+    """
+
+    def __init__(
+        self, result: RenderResult, *, pixel: tuple[int, int] | None = None, mask: str | None = None
+    ) -> None:
+        if result.abuffer is None or result.trace is None:
+            raise ValueError(
+                "'result' must come from render(..., visibility='abuffer', trace=Recorder(...))"
+            )
+        self.result, self.trace = result, result.trace
+        self.layout = mask or next(
+            (e.layout for e in self.trace if e.kind == "mask_buffer_row"), DEFAULT_MASK
+        )
+        height, width = result.depth.shape
+        packed = self.trace.of_kind("pixel_packed")
+        if pixel is None:
+            pixel = (packed[0].x, packed[0].y) if len(packed) else (width // 2, height // 2)
+
+        fig, (ax,) = new_figure(1, width=4.0, height=4.0)
+        ax.imshow(
+            result.image, origin="lower", extent=(0, width, 0, height), interpolation="nearest"
+        )
+        ax.set_title("click a pixel", fontsize=10)
+        self.marker = Rectangle((0, 0), 1, 1, fill=False, ec="red", lw=1.5)
+        ax.add_patch(self.marker)
+        fig.tight_layout()
+        fig.canvas.mpl_connect("button_press_event", self._clicked)
+        self.figure, self.ax = fig, ax
+
+        cols, rows = (int(v) for v in self.layout.split("x"))
+        grid_fig, grid_axes = new_figure(MAX_GRIDS, width=1.6 * MAX_GRIDS, height=1.9)
+        self.grids = []
+        for grid_ax in grid_axes:
+            self.grids.append(
+                grid_ax.imshow(
+                    np.zeros((rows, cols)),
+                    origin="lower",
+                    cmap="Greys",
+                    vmin=0,
+                    vmax=1,
+                    extent=(0, cols, 0, rows),
+                    interpolation="nearest",
+                )
+            )
+            grid_ax.set_xticks(range(cols + 1), labels=[])
+            grid_ax.set_yticks(range(rows + 1), labels=[])
+            grid_ax.tick_params(length=0)
+            grid_ax.grid(color="0.6", lw=0.5)
+        grid_fig.tight_layout()
+        self.grid_figure, self.grid_axes = grid_fig, grid_axes
+
+        self.x_box = widgets.IntText(value=int(pixel[0]), description="x", layout={"width": "9em"})
+        self.y_box = widgets.IntText(value=int(pixel[1]), description="y", layout={"width": "9em"})
+        for box in (self.x_box, self.y_box):
+            box.observe(lambda _: self._pixel_changed(), names="value")
+        self.status = status_label()
+        self.fragments, self.packer = widgets.HTML(), widgets.HTML()
+        self.insertions: Stepper | None = None
+        self._insertions_box = widgets.VBox()
+        self._canvas, self._grid_canvas = figure_widget(fig), figure_widget(grid_fig)
+        self.widget = widgets.VBox(
+            [
+                widgets.HBox([self.x_box, self.y_box, self.status]),
+                widgets.HBox([self._canvas, widgets.VBox([self.fragments, self.packer])]),
+                widgets.HTML("<b>pixel masks</b> (sub-sample (i, j) is bit j * cols + i)"),
+                self._grid_canvas,
+                widgets.HTML("<b>insertions</b> into this pixel's pixelstruct"),
+                self._insertions_box,
+            ]
+        )
+        self.pixel = (-1, -1)
+        self._pixel_changed()
+
+    def pick(self, x: int, y: int) -> None:
+        """Show pixel (x, y) (same as typing it in the boxes or clicking it)."""
+        with self.x_box.hold_trait_notifications(), self.y_box.hold_trait_notifications():
+            self.x_box.value, self.y_box.value = int(x), int(y)
+        self._pixel_changed()
+
+    def _clicked(self, event) -> None:
+        if event.inaxes is self.ax and event.xdata is not None:
+            self.pick(int(np.floor(event.xdata)), int(np.floor(event.ydata)))
+
+    def _pixel_changed(self) -> None:
+        x, y = self.x_box.value, self.y_box.value
+        height, width = self.result.depth.shape
+        if not (0 <= x < width and 0 <= y < height):
+            say(self.status, f"pixel ({x}, {y}) is outside the {width}x{height} raster", error=True)
+            return
+        if (x, y) == self.pixel:
+            return
+        self.pixel = (x, y)
+        fragments = self.result.fragments_at(x, y)
+        inserted = Trace(
+            e for e in self.trace if e.kind == "fragment_inserted" and (e.x, e.y) == (x, y)
+        )
+        packed = [e for e in self.trace if e.kind == "pixel_packed" and (e.x, e.y) == (x, y)]
+        say(
+            self.status,
+            ""
+            if inserted or packed or not fragments
+            else f"no events recorded at ({x}, {y}): trace a region that holds it",
+        )
+        self.marker.set_xy((x, y))
+        self.fragments.value = (
+            f"<b>pixel ({x}, {y})</b>: {len(fragments)} fragments, nearest first"
+            + fragment_table(fragments, self.layout)
+        )
+        self.packer.value = self._packer_html(packed[-1] if packed else None)
+        self._show_grids(fragments)
+        self.insertions = (
+            Stepper(inserted, [FragmentInsertionView(inserted, self.layout)]) if inserted else None
+        )
+        self._insertions_box.children = (
+            (self.insertions.widget,)
+            if self.insertions
+            else (widgets.HTML("<i>no fragment_inserted events recorded here</i>"),)
+        )
+        refresh_figure(self.figure, self._canvas)
+
+    def _show_grids(self, fragments) -> None:
+        for k, (image, grid_ax) in enumerate(zip(self.grids, self.grid_axes, strict=True)):
+            grid_ax.set_visible(k < len(fragments))
+            if k < len(fragments):
+                image.set_data(mask_to_grid(fragments[k].mask, self.layout))
+                grid_ax.set_title(f"#{k} z={fragments[k].z:.4g}", fontsize=8)
+        refresh_figure(self.grid_figure, self._grid_canvas)
+
+    @staticmethod
+    def _packer_html(event) -> str:
+        if event is None:
+            return "<i>no pixel_packed event recorded here</i>"
+        rows = [
+            (
+                s.level,
+                s.branch or "\u2013",
+                s.fragment.z,
+                int(popcount(s.region)),
+                s.weight,
+                int(popcount(s.mask_a)),
+                s.a,
+                int(popcount(s.mask_q)),
+                s.q,
+                s.color,
+                swatch(s.color),
+            )
+            for s in event.steps
+        ]
+        return (
+            f"<b>packer</b> ({event.weights} weights): color {swatch(event.color)} "
+            f"{', '.join(f'{c:.4g}' for c in event.color)}, alpha {event.alpha:.4g}"
+            + html_table(PACK_COLUMNS, rows, raw=(10,))
+        )

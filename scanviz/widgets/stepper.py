@@ -1,0 +1,229 @@
+"""A stepper: Play, slider and Prev/Next over a `Trace`, driving views that show one step.
+
+The controls only move a `StepModel`; every view's ``show(step)`` then
+updates its artists and tables in place (created once, changed with
+``set_data`` and friends). Views draw what the trace says; they never run
+the algorithm.
+"""
+
+from __future__ import annotations
+
+import html
+import io
+import time
+from collections.abc import Iterable
+from typing import Protocol, runtime_checkable
+
+import ipywidgets as widgets
+
+from ..trace import Trace
+from .model import StepModel
+
+
+@runtime_checkable
+class View(Protocol):
+    """What a stepper lays out and drives.
+
+    Attributes
+    ----------
+    widget : ipywidgets.Widget
+        Laid out below the controls.
+    """
+
+    widget: widgets.Widget
+
+    def show(self, step: int) -> None:
+        """Update in place to the state after the first `step` events."""
+
+
+def figure_widget(figure):
+    """The widget that shows a matplotlib figure.
+
+    Under ipympl (``%matplotlib widget``) the figure's canvas is itself a
+    widget and is returned. Otherwise the figure is shown as a PNG in an
+    ``ipywidgets.Image`` (which works headless and in any frontend) and
+    pyplot forgets the figure: the widget owns it. Call `refresh_figure`
+    after changing artists.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> with plt.ioff():
+    ...     figure = plt.figure(figsize=(1, 1))
+    >>> widget = figure_widget(figure)  # an Image on a non-widget backend
+    >>> refresh_figure(figure, widget)
+    >>> widget.value[:4] == b"\\x89PNG" or widget is figure.canvas
+    True
+    """
+    import matplotlib.pyplot as plt
+
+    if isinstance(figure.canvas, widgets.DOMWidget):
+        return figure.canvas
+    plt.close(figure)
+    return widgets.Image(format="png")
+
+
+def refresh_figure(figure, widget) -> None:
+    """Redraw `figure` into the `widget` that `figure_widget` made for it."""
+    if widget is figure.canvas:
+        figure.canvas.draw_idle()
+        return
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", pil_kwargs={"compress_level": 1})  # speed over size
+    widget.value = buffer.getvalue()
+
+
+def draw_pixel_grid(axes, extent: tuple[int, int, int, int]) -> None:
+    """Thin lines on the pixel borders of `extent` = (x_start, x_end, y_start, y_end).
+
+    One `LineCollection`, so a redraw costs one artist, not a tick per line.
+    """
+    from matplotlib.collections import LineCollection
+
+    x_start, x_end, y_start, y_end = extent
+    lines = [[(x, y_start), (x, y_end)] for x in range(x_start, x_end + 1)]
+    lines += [[(x_start, y), (x_end, y)] for y in range(y_start, y_end + 1)]
+    axes.add_collection(LineCollection(lines, colors="0.85", linewidths=0.5, zorder=1.5))
+
+
+class Stepper:
+    """Step through a trace with Play, a slider and Prev/Next; every view shows the step.
+
+    Parameters
+    ----------
+    trace : Trace
+    views : iterable of View
+        Each is shown below the controls and told every new step.
+    title : str, optional
+        A heading above the controls.
+    interval : int, optional
+        Milliseconds between steps when playing.
+
+    Attributes
+    ----------
+    model : StepModel
+    views : list of View
+    play : ipywidgets.Play
+        Linked in the frontend to `slider` by `link` (``jslink``), so playing is smooth.
+    link : ipywidgets.Link
+    slider : ipywidgets.IntSlider
+        0..len(trace); moving it shows that step.
+    prev_button, next_button : ipywidgets.Button
+        One step back or on; disabled at the ends.
+    label : ipywidgets.Label
+        ``"step k / n: <kind of event k>"`` (``start`` at step 0).
+    widget : ipywidgets.VBox
+        Everything; displaying the stepper displays this.
+
+    Notes
+    -----
+    A trace longer than `MAX_STEPS` is refused: `widget` is then a message
+    saying how to record less (a `Recorder` filter) and the controls are
+    None, so a huge trace never freezes the kernel.
+
+    Examples
+    --------
+    >>> from scanviz import scan_convert
+    >>> trace = scan_convert([(0, 0), (4, 0), (4, 3)], 5, 3, trace=True).trace
+    >>> stepper = Stepper(trace, [])
+    >>> stepper.next_button.click()
+    >>> stepper.label.value
+    'step 1 / 8: edge_table_built'
+    >>> stepper.slider.value = 8
+    >>> stepper.model.step, stepper.label.value
+    (8, 'step 8 / 8: span')
+    >>> stepper  # doctest: +SKIP
+    """
+
+    MAX_STEPS = 20_000
+
+    def __init__(
+        self, trace: Trace, views: Iterable[View] = (), *, title: str = "", interval: int = 300
+    ) -> None:
+        self.model = StepModel(trace)
+        self.views = list(views)
+        for index, view in enumerate(self.views):
+            if not isinstance(view, View):
+                raise TypeError(
+                    f"'views'[{index}] must have a widget and a show(step); got {view!r}"
+                )
+        heading = [widgets.HTML(f"<b>{html.escape(title)}</b>")] if title else []
+        steps = len(trace)
+        if steps > self.MAX_STEPS:
+            self.play = self.slider = self.link = self.label = None
+            self.prev_button = self.next_button = None
+            self.widget = widgets.VBox([*heading, widgets.HTML(_too_long_message(steps))])
+            return
+        self.play = widgets.Play(min=0, max=steps, step=1, interval=interval, description="play")
+        self.slider = widgets.IntSlider(min=0, max=steps, value=0, description="step")
+        self.link = widgets.jslink((self.play, "value"), (self.slider, "value"))
+        self.prev_button = widgets.Button(description="◀ prev", layout={"width": "auto"})
+        self.next_button = widgets.Button(description="next ▶", layout={"width": "auto"})
+        self.label = widgets.Label()
+        self.prev_button.on_click(lambda _: self._move(-1))
+        self.next_button.on_click(lambda _: self._move(+1))
+        self.slider.observe(lambda change: self.model.set_step(change["new"]), names="value")
+        self.model.observe(self._show)
+        controls = widgets.HBox([self.play, self.prev_button, self.slider, self.next_button])
+        self.widget = widgets.VBox(
+            [*heading, controls, self.label, *(view.widget for view in self.views)]
+        )
+        self._show(0)
+
+    def _move(self, delta: int) -> None:
+        self.slider.value = min(max(self.slider.value + delta, 0), len(self.model))
+
+    def _show(self, step: int) -> None:
+        self.slider.value = step  # when the model was moved directly
+        kind = self.model.trace[step - 1].kind if step else "start"
+        self.label.value = f"step {step} / {len(self.model)}: {kind}"
+        self.prev_button.disabled = step == 0
+        self.next_button.disabled = step == len(self.model)
+        for view in self.views:
+            view.show(step)
+
+    def _ipython_display_(self) -> None:
+        from IPython.display import display
+
+        display(self.widget)
+
+
+def _too_long_message(steps: int) -> str:
+    return (
+        f"<b>This trace has {steps:,} events; a stepper shows at most {Stepper.MAX_STEPS:,}.</b><br>"
+        "Record only what you want to step through with a filter, e.g. "
+        "<code>Recorder(rows=(10, 20))</code>, <code>Recorder(kinds=['aet_sorted', 'span'])</code> "
+        "or <code>Recorder(region=(x0, y0, x1, y1))</code>, and pass it as "
+        "<code>trace=</code>."
+    )
+
+
+def redraw_time(stepper: Stepper, steps: int = 50) -> float:
+    """Mean seconds the kernel spends per step while playing forward `steps` steps.
+
+    Each step sets the slider, as Play does, so it counts every view's
+    ``show`` and the redraw of its figures: the PNG render on a non-widget
+    backend; under ipympl, which draws later in the event loop, a draw of
+    each view's ``figure`` is forced so that it counts too. The stepper ends
+    on the step it started from.
+
+    Examples
+    --------
+    >>> from scanviz import scan_convert
+    >>> stepper = Stepper(scan_convert([(0, 0), (4, 0), (4, 3)], 5, 3, trace=True).trace)
+    >>> redraw_time(stepper, steps=5) < 1.0
+    True
+    """
+    if stepper.slider is None:
+        raise ValueError("'stepper' refused its trace (too long); there is nothing to redraw")
+    start, cycle = stepper.slider.value, len(stepper.model) + 1
+    figures = [getattr(view, "figure", None) for view in stepper.views]
+    deferred = [f for f in figures if f is not None and isinstance(f.canvas, widgets.DOMWidget)]
+    began = time.perf_counter()
+    for offset in range(1, steps + 1):
+        stepper.slider.value = (start + offset) % cycle
+        for figure in deferred:
+            figure.canvas.draw()
+    elapsed = time.perf_counter() - began
+    stepper.slider.value = start
+    return elapsed / max(steps, 1)

@@ -1,0 +1,492 @@
+"""Step through the z-buffer one depth test at a time.
+
+`ZBufferView` shows, after each step, the depth buffer and the color buffer
+as the ``depth_test`` events so far left them, beside the final image, and
+the depth-test history of one picked pixel. `zbuffer_stepper` renders a
+scene with a filtered `Recorder` and wraps the view in a `Stepper`.
+"""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.patches import Rectangle
+
+from ..pipeline import RenderResult, render
+from ..trace import Recorder, Trace
+from ._common import html_table, new_figure, parse_pixel, say, status_label
+from .stepper import Stepper, figure_widget, refresh_figure
+
+HISTORY_COLUMNS = ("step", "polygon", "incoming z", "stored z", "test")
+
+
+class ZBufferView:
+    """Depth and color buffers after `step` depth tests, and one pixel's test history.
+
+    Parameters
+    ----------
+    trace : Trace
+        Events of a traced `render`; its ``depth_test`` events are shown.
+    result : RenderResult
+        The same render: the final image, and per pixel the final polygon
+        (whose shaded color the color buffer shows once that polygon wins).
+    background : (3,) array_like of float, optional
+        Color of pixels nothing has been drawn on yet.
+    pixel : (int, int), optional
+        The pixel whose history is shown first (default: the first one tested).
+    region : (x_start, y_start, x_end, y_end), optional
+        Outlined on the images (the region the trace was filtered to).
+    note : str, optional
+        Shown above the images (e.g. how the trace was filtered).
+
+    Attributes
+    ----------
+    widget : ipywidgets.VBox
+    pixel_text : ipywidgets.Text
+        "x, y" of the picked pixel; clicking an image sets it.
+    history : ipywidgets.HTML
+        The picked pixel's depth tests; the step shown is highlighted, later ones gray.
+    note : ipywidgets.HTML
+        What the trace holds when it had to be filtered or cut.
+    status : ipywidgets.HTML
+        Bad pixel input.
+    depth_image, color_image : matplotlib AxesImage
+        Their arrays are the buffers at the step shown.
+
+    Notes
+    -----
+    Shading is deferred in `render`: a pixel is shaded once, for the polygon
+    that wins it. The color buffer therefore shows a polygon's final shaded
+    color where it is the final winner, its flat color elsewhere when it
+    wins some other pixel in the end, and a categorical color otherwise.
+    """
+
+    def __init__(
+        self,
+        trace: Trace,
+        result: RenderResult,
+        *,
+        background=(0.0, 0.0, 0.0),
+        pixel: tuple[int, int] | None = None,
+        region: tuple[int, int, int, int] | None = None,
+        note: str = "",
+    ) -> None:
+        self.trace, self.result = trace, result
+        height, width = result.depth.shape
+        tests = [(i, e) for i, e in enumerate(trace) if e.kind == "depth_test"]
+        self._index = np.array([i for i, _ in tests], np.int64)
+        self._x = np.array([e.x for _, e in tests], np.int64)
+        self._y = np.array([e.y for _, e in tests], np.int64)
+        self._z = np.array([e.z for _, e in tests], np.float64)
+        self._polygon = np.array([e.polygon for _, e in tests], np.int64)
+        self._passed = np.array([e.passed for _, e in tests], bool)
+        self._palette = self._polygon_colors(result)
+        self._background = np.asarray(background, np.float64)[:3]
+        self.step = 0
+
+        fig, (ax_depth, ax_color, ax_final) = new_figure(3, width=10.5, height=3.6)
+        extent = (0, width, 0, height)
+        finite = self._z[np.isfinite(self._z)]
+        low, high = (finite.min(), finite.max()) if len(finite) else (0.0, 1.0)
+        self.depth_image = ax_depth.imshow(
+            np.full((height, width), np.nan),
+            origin="lower",
+            extent=extent,
+            cmap="viridis_r",
+            vmin=low,
+            vmax=high if high > low else low + 1,
+            interpolation="nearest",
+        )
+        fig.colorbar(self.depth_image, ax=ax_depth, fraction=0.046, label="z (smaller = nearer)")
+        self.color_image = ax_color.imshow(
+            np.zeros((height, width, 3)), origin="lower", extent=extent, interpolation="nearest"
+        )
+        ax_final.imshow(result.image, origin="lower", extent=extent, interpolation="nearest")
+        for ax, title in zip(
+            (ax_depth, ax_color, ax_final), ("depth so far", "color so far", "final"), strict=True
+        ):
+            ax.set_title(title, fontsize=10)
+            ax.set_xlim(0, width)
+            ax.set_ylim(0, height)
+            if region is not None:
+                x0, y0, x1, y1 = region
+                ax.add_patch(
+                    Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ec="white", ls="--", lw=1)
+                )
+        self.current_marker = Rectangle((0, 0), 1, 1, fill=False, ec="orange", lw=2, visible=False)
+        self.pixel_marker = Rectangle((0, 0), 1, 1, fill=False, ec="red", lw=1.5)
+        ax_depth.add_patch(self.current_marker)
+        ax_depth.add_patch(self.pixel_marker)
+        self.figure, self.axes = fig, (ax_depth, ax_color, ax_final)
+        fig.tight_layout()
+        fig.canvas.mpl_connect("button_press_event", self._clicked)
+
+        if pixel is None:
+            pixel = (int(self._x[0]), int(self._y[0])) if len(self._x) else (0, 0)
+        self.pixel = tuple(pixel)
+        self.pixel_text = widgets.Text(
+            value=f"{self.pixel[0]}, {self.pixel[1]}",
+            description="pixel (x, y)",
+            continuous_update=False,
+        )
+        self.pixel_text.observe(self._pixel_typed, names="value")
+        self.history = widgets.HTML()
+        self.status = status_label()
+        self.note = status_label()
+        say(self.note, note)
+        self._canvas = figure_widget(fig)
+        self.widget = widgets.VBox(
+            [self.note, self._canvas, widgets.HBox([self.pixel_text, self.status]), self.history]
+        )
+        self.show(0)
+
+    @staticmethod
+    def _polygon_colors(result: RenderResult) -> dict[int, np.ndarray]:
+        """The shaded color of each polygon at one pixel it finally wins (flat: its color)."""
+        ys, xs = np.nonzero(result.polygon >= 0)
+        winners = result.polygon[ys, xs]
+        _, first = np.unique(winners, return_index=True)
+        return {int(winners[k]): result.image[ys[k], xs[k]] for k in first}
+
+    def buffers(self, step: int) -> tuple[np.ndarray, np.ndarray]:
+        """(depth, polygon) after the first `step` events: (H, W) float64 (+inf empty), int64 (-1)."""
+        height, width = self.result.depth.shape
+        done = (self._index < step) & self._passed
+        depth = np.full((height, width), np.inf)
+        polygon = np.full((height, width), -1, np.int64)
+        # Each pixel keeps its last passing test (a pass always lowers the stored depth).
+        flat = (self._y[done] * width + self._x[done])[::-1]
+        _, first = np.unique(flat, return_index=True)
+        last = np.flatnonzero(done)[::-1][first]
+        depth[self._y[last], self._x[last]] = self._z[last]
+        polygon[self._y[last], self._x[last]] = self._polygon[last]
+        return depth, polygon
+
+    def colors(self, polygon: np.ndarray) -> np.ndarray:
+        """The color buffer for a buffer of winning polygons (see Notes of the class)."""
+        import matplotlib
+
+        image = np.empty((*polygon.shape, 3))
+        image[...] = self._background
+        final = (polygon >= 0) & (polygon == self.result.polygon)
+        image[final] = self.result.image[final]
+        tab = matplotlib.colormaps["tab10"]
+        for p in np.unique(polygon[(polygon >= 0) & ~final]):
+            color = self._palette.get(int(p), np.array(tab(int(p) % 10)[:3]))
+            image[(polygon == p) & ~final] = color
+        return image
+
+    def show(self, step: int) -> None:
+        """Show the buffers after `step` events and the picked pixel's history at that step."""
+        self.step = int(step)
+        depth, polygon = self.buffers(self.step)
+        self.depth_image.set_data(np.where(np.isfinite(depth), depth, np.nan))
+        self.color_image.set_data(self.colors(polygon))
+        current = np.flatnonzero(self._index == self.step - 1)
+        self.current_marker.set_visible(len(current) > 0)
+        if len(current):
+            self.current_marker.set_xy((self._x[current[0]], self._y[current[0]]))
+        self._show_history()
+        refresh_figure(self.figure, self._canvas)
+
+    def _show_history(self) -> None:
+        x, y = self.pixel
+        self.pixel_marker.set_xy((x, y))
+        here = np.flatnonzero((self._x == x) & (self._y == y))
+        rows, states = [], []
+        for k in here:
+            event = self.trace[int(self._index[k])]
+            rows.append(
+                (int(self._index[k]) + 1, event.polygon, event.z, event.stored, event.passed)
+            )
+            done = self._index[k] < self.step
+            states.append(
+                "current" if self._index[k] == self.step - 1 else "done" if done else "pending"
+            )
+        title = f"<b>pixel ({x}, {y})</b>: {len(rows)} depth tests"
+        if not rows:
+            title += " in this trace (none: outside the region or not covered)"
+        self.history.value = title + html_table(HISTORY_COLUMNS, rows, states=states)
+
+    def pick(self, x: int, y: int) -> None:
+        """Show pixel (x, y)'s history (same as typing it or clicking it)."""
+        self.pixel_text.value = f"{int(x)}, {int(y)}"
+
+    def _pixel_typed(self, change) -> None:
+        try:
+            x, y = parse_pixel(change["new"])
+        except ValueError as error:
+            say(self.status, str(error), error=True)
+            return
+        height, width = self.result.depth.shape
+        if not (0 <= x < width and 0 <= y < height):
+            say(self.status, f"pixel ({x}, {y}) is outside the {width}x{height} raster", error=True)
+            return
+        say(self.status, "")
+        self.pixel = (x, y)
+        self._show_history()
+        refresh_figure(self.figure, self._canvas)
+
+    def _clicked(self, event) -> None:
+        if event.inaxes in self.axes and event.xdata is not None:
+            self.pick(int(np.floor(event.xdata)), int(np.floor(event.ydata)))
+
+
+def _auto_region(result: RenderResult, budget: int) -> tuple[int, int, int, int]:
+    """A square around the middle of the drawn pixels whose depth tests should fit `budget`."""
+    height, width = result.depth.shape
+    ys, xs = np.nonzero(result.polygon >= 0)
+    if not len(xs):
+        return (0, 0, width, height)
+    tests_per_pixel = result.stats.fragments / len(xs)
+    side = max(1, int(np.sqrt(0.8 * budget / max(tests_per_pixel, 1.0))))
+    cx, cy = int(np.median(xs)), int(np.median(ys))
+    x0, y0 = max(0, min(cx - side // 2, width - side)), max(0, min(cy - side // 2, height - side))
+    return (x0, y0, min(width, x0 + side), min(height, y0 + side))
+
+
+def zbuffer_stepper(
+    scene,
+    width: int,
+    height: int,
+    *,
+    shading: str = "flat",
+    region: tuple[int, int, int, int] | None = None,
+    pixel: tuple[int, int] | None = None,
+) -> Stepper:
+    """Render `scene` tracing its depth tests and step through them with a `ZBufferView`.
+
+    Parameters
+    ----------
+    scene : Scene
+    width, height : int
+        Raster size.
+    shading : {"flat", "gouraud", "phong", "gooch"}
+    region : (x_start, y_start, x_end, y_end), optional
+        Record only the depth tests of these pixels (half-open). Without it,
+        a scene with more depth tests than ``Stepper.MAX_STEPS`` is traced in
+        a region around the middle of its drawn pixels, and the view says so.
+    pixel : (int, int), optional
+        The pixel whose depth-test history is shown first.
+
+    Returns
+    -------
+    Stepper
+        ``.views[0]`` is the `ZBufferView`.
+
+    Examples
+    --------
+    >>> from scanviz.scene.builtin import builtin_scene
+    >>> stepper = zbuffer_stepper(builtin_scene("umbc_zbuffer"), 12, 12)
+    >>> stepper.slider.max, stepper.views[0].pixel
+    (54, (1, 2))
+    """
+    notes = []
+    if region is None:
+        estimate = render(scene, width, height, shading=shading)  # compiled: counts the tests
+        if estimate.stats.fragments > Stepper.MAX_STEPS:
+            region = _auto_region(estimate, Stepper.MAX_STEPS)
+            notes.append(
+                f"{estimate.stats.fragments} depth tests exceed the stepper's limit of "
+                f"{Stepper.MAX_STEPS}: tracing only region {region} (pass region= to choose)."
+            )
+    result = render(
+        scene, width, height, shading=shading, trace=Recorder(kinds=["depth_test"], region=region)
+    )
+    trace = result.trace
+    if len(trace) > Stepper.MAX_STEPS:
+        notes.append(
+            f"The trace holds {len(trace)} depth tests: showing the first {Stepper.MAX_STEPS}."
+        )
+        trace = trace[: Stepper.MAX_STEPS]
+    view = ZBufferView(
+        trace,
+        result,
+        background=scene.background,
+        pixel=pixel,
+        region=region,
+        note=" ".join(notes),
+    )
+    return Stepper(trace, [view], title="z-buffer: one depth test per step")
+
+
+INTERPOLATION_KINDS = ("polygon_setup", "edge_values", "span_values")
+
+
+def _value_names(setup) -> list[str]:
+    """Column names of a polygon's interpolated values: a0, a1, ... or a0/w, ..., 1/w."""
+    count = len(setup.values[0]) if setup is not None and setup.values else 0
+    if setup is not None and setup.perspective and count:
+        return [f"a{k}/w" for k in range(count - 1)] + ["1/w"]
+    return [f"a{k}" for k in range(count)]
+
+
+class InterpolationView:
+    """Edge and span values of the row being scanned, and the current span on the image.
+
+    Parameters
+    ----------
+    trace : Trace
+        ``polygon_setup``, ``edge_values`` and ``span_values`` events of a traced render.
+    image : (H, W, 3) ndarray of float64
+        The final image, row 0 at the bottom.
+    note : str, optional
+        Shown above the view (e.g. that the trace was cut).
+
+    Attributes
+    ----------
+    widget : ipywidgets.VBox
+    setup : ipywidgets.HTML
+        The current polygon: snapped vertices, depth plane, dz/dx, dz/dy.
+    edges : ipywidgets.HTML
+        The current row's active edges: x, values and their d/dy.
+    spans : ipywidgets.HTML
+        The current row's spans so far: start values and d/dx; the newest highlighted.
+    span_patch : matplotlib Rectangle
+        Over the current span (hidden when the step is not on a span).
+    outline : matplotlib Line2D
+        The current polygon's snapped outline.
+    """
+
+    def __init__(self, trace: Trace, image: np.ndarray, *, note: str = "") -> None:
+        self.trace = trace
+        height, width = image.shape[:2]
+        fig, (ax,) = new_figure(1, width=4.5, height=4.5)
+        ax.imshow(image, origin="lower", extent=(0, width, 0, height), interpolation="nearest")
+        ax.set_xlim(0, width)
+        ax.set_ylim(0, height)
+        (self.outline,) = ax.plot([], [], color="crimson", lw=1.5)
+        self.scanline = ax.axhline(0, color="orange", lw=1, visible=False)
+        self.span_patch = Rectangle((0, 0), 0, 1, fill=False, ec="yellow", lw=2.5, visible=False)
+        ax.add_patch(self.span_patch)
+        fig.tight_layout()
+        self.figure, self.ax = fig, ax
+        self.setup, self.edges, self.spans = widgets.HTML(), widgets.HTML(), widgets.HTML()
+        self.note = status_label()
+        say(self.note, note)
+        self._canvas = figure_widget(fig)
+        self.widget = widgets.VBox(
+            [
+                self.note,
+                widgets.HBox([self._canvas, widgets.VBox([self.setup, self.edges, self.spans])]),
+            ]
+        )
+        self.step = 0
+        self.show(0)
+
+    def _latest(self, kind: str, step: int):
+        for event in reversed(self.trace[:step]):
+            if event.kind == kind:
+                return event
+        return None
+
+    def show(self, step: int) -> None:
+        """Show the polygon, row and span that the first `step` events reached."""
+        self.step = int(step)
+        setup = self._latest("polygon_setup", self.step)
+        row = self._latest("edge_values", self.step)
+        if row is not None and setup is not None and row.polygon != setup.polygon:
+            row = None  # the new polygon has not reached a row yet
+        names = _value_names(setup)
+        if setup is None:
+            self.setup.value = "<i>no polygon set up yet</i>"
+            self.outline.set_data([], [])
+        else:
+            xs = [v[0] for v in setup.vertices] + [setup.vertices[0][0]]
+            ys = [v[1] for v in setup.vertices] + [setup.vertices[0][1]]
+            self.outline.set_data(xs, ys)
+            self.setup.value = f"<b>polygon {setup.polygon}</b>" + html_table(
+                ("vertices (x, y, z)", "plane (A, B, C, D)", "dz/dx", "dz/dy"),
+                [(setup.vertices, setup.plane, setup.dzdx, setup.dzdy)],
+            )
+        self.scanline.set_visible(row is not None)
+        if row is None:
+            self.edges.value = self.spans.value = ""
+            self.span_patch.set_visible(False)
+        else:
+            self.scanline.set_ydata([row.y, row.y])
+            self.edges.value = f"<b>row y = {row.y}</b>, z at x = 0: {row.z_row:.6g}" + html_table(
+                ("edge", "x", *names, *(f"d{n}/dy" for n in names)),
+                [(e.edge, e.x, *e.values, *e.dvdy) for e in row.entries],
+            )
+            self._show_spans(row, names)
+        refresh_figure(self.figure, self._canvas)
+
+    def _show_spans(self, row, names) -> None:
+        here = [
+            (i, e)
+            for i, e in enumerate(self.trace[: self.step])
+            if e.kind == "span_values" and e.polygon == row.polygon and e.y == row.y
+        ]
+        current = here[-1][1] if here and here[-1][0] == self.step - 1 else None
+        self.spans.value = "<b>spans</b>" + html_table(
+            ("x_start", "x_end", "x_left", "x_right", "z", "dz/dx", *names)
+            + tuple(f"d{n}/dx" for n in names),
+            [
+                (e.x_start, e.x_end, e.x_left, e.x_right, e.z, e.dzdx, *e.values, *e.dvdx)
+                for _, e in here
+            ],
+            states=["current" if e is current else "done" for _, e in here],
+        )
+        self.span_patch.set_visible(current is not None)
+        if current is not None:
+            self.span_patch.set_xy((current.x_start, current.y))
+            self.span_patch.set_width(current.x_end - current.x_start)
+
+
+def interpolation_stepper(
+    scene_or_builtin,
+    width: int | None = None,
+    height: int | None = None,
+    *,
+    shading: str = "gouraud",
+    polygons=None,
+    rows: tuple[int, int] | None = None,
+) -> Stepper:
+    """Render with the interpolation traced and step through rows and spans.
+
+    Parameters
+    ----------
+    scene_or_builtin : Scene or str
+        A scene, or the name of a built-in scene (`scanviz.scene.builtin.BUILTIN_SCENES`).
+    width, height : int, optional
+        Raster size; defaults to the built-in scene's.
+    shading : {"flat", "gouraud", "phong", "gooch"}
+        Gouraud (default) interpolates the vertex colors.
+    polygons : iterable of int, optional
+        Record only these polygons.
+    rows : (int, int), optional
+        Record only these rows (half-open).
+
+    Returns
+    -------
+    Stepper
+        ``.views[0]`` is the `InterpolationView`. A trace longer than
+        ``Stepper.MAX_STEPS`` is cut, and the stepper's view says so.
+
+    Examples
+    --------
+    >>> stepper = interpolation_stepper("umbc_zbuffer")
+    >>> stepper.slider.max
+    28
+    """
+    from ..scene.builtin import BUILTIN_SCENES, builtin_scene
+
+    scene = scene_or_builtin
+    if isinstance(scene_or_builtin, str):
+        scene = builtin_scene(scene_or_builtin)
+        width = width or BUILTIN_SCENES[scene_or_builtin].width
+        height = height or BUILTIN_SCENES[scene_or_builtin].height
+    if width is None or height is None:
+        raise ValueError("'width' and 'height' are required for a Scene")
+    recorder = Recorder(kinds=INTERPOLATION_KINDS, polygons=polygons, rows=rows)
+    result = render(scene, width, height, shading=shading, trace=recorder)
+    trace, note = result.trace, ""
+    if len(trace) > Stepper.MAX_STEPS:
+        note = (
+            f"The trace holds {len(trace)} events: showing the first {Stepper.MAX_STEPS} "
+            "(pass polygons= or rows= to choose)."
+        )
+        trace = trace[: Stepper.MAX_STEPS]
+    view = InterpolationView(trace, result.image, note=note)
+    return Stepper(trace, [view], title="interpolation along edges and spans")
