@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: lab test lint bench clean
+.PHONY: lab test lint bench clean chromium
 
 # numba's on-disk cache is keyed by each kernel's own file, not by the modules it calls:
 # drop every cached kernel whenever any package source changes.
@@ -19,14 +19,27 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e ".[dev,lab,bench]"
 	touch $(STAMP)
 
+# .jupyter/labconfig holds the project's JupyterLab setting defaults (no news popup, no kernel dialog).
+LAB_ENV := JUPYTER_CONFIG_PATH=$(CURDIR)/.jupyter$${JUPYTER_CONFIG_PATH:+:$$JUPYTER_CONFIG_PATH}
+
+# Jupyter refuses to start as root without --allow-root (containers, CI machines): pass it only then.
+ALLOW_ROOT := $(if $(filter 0,$(shell id -u)),--allow-root,)
+
 lab: $(STAMP) $(NUMBA_STAMP)
-	cd notebooks && ../$(BIN)/jupyter lab 00_tour.ipynb
+	cd notebooks && $(LAB_ENV) ../$(BIN)/jupyter lab $(ALLOW_ROOT) 00_tour.ipynb
+
+# Debian's chromium for tests/browser (Playwright drives it; no browser is downloaded).
+# Never fails: without chromium the browser test skips and says why.
+chromium:
+	@command -v chromium >/dev/null \
+	|| (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends chromium) \
+	|| echo "scanviz: could not install chromium; the browser test will skip"
 
 lint: $(STAMP)
 	$(BIN)/ruff check scanviz tests
 
-test: lint $(NUMBA_STAMP)
-	$(BIN)/python -m pytest -n 2 -q
+test: lint $(NUMBA_STAMP) chromium
+	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
 bench: $(STAMP) $(NUMBA_STAMP)
 	$(BIN)/python -m scanviz bench raster

@@ -79,7 +79,7 @@ class ScanConversionView:
 
     Attributes
     ----------
-    widget : ipywidgets.HBox
+    widget : ipywidgets.VBox
     figure : matplotlib Figure
     image : AxesImage
         Coverage counts so far, ``trace.image_at(step, width, height)``.
@@ -149,8 +149,10 @@ class ScanConversionView:
 
         self.et_html, self.aet_html = widgets.HTML(), widgets.HTML()
         self._canvas = figure_widget(self.figure)
-        tables = widgets.VBox([self.et_html, self.aet_html], layout={"margin": "0 0 0 12px"})
-        self.widget = widgets.HBox([self._canvas, tables])
+        # Tables under the figures: side by side they get squeezed off a notebook's width.
+        tables = widgets.HBox([self.et_html, self.aet_html], layout={"margin": "8px 0 0 0"})
+        self.aet_html.layout.margin = "0 0 0 24px"
+        self.widget = widgets.VBox([self._canvas, tables])
         self.show(0)
 
     def _index_steps(self) -> None:

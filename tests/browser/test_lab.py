@@ -1,0 +1,206 @@
+"""A lesson notebook, run in JupyterLab in headless Chromium, as a student would.
+
+The test starts JupyterLab on a free localhost port over a temporary copy of
+``notebooks/``, opens lesson 02, runs all cells from the Run menu, then clicks
+the scan-conversion stepper's Next button and checks that the active edge table
+shown beside it changes. Screenshots go to ``tests/browser/screenshots/``
+(their paths are printed; ``pytest -rP`` shows them).
+
+The browser is Debian's chromium, driven by Playwright (no browser downloads).
+The test skips only when no chromium can be found; every other problem fails.
+"""
+
+import os
+import re
+import shutil
+import socket
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+from playwright.sync_api import Page, sync_playwright
+
+ROOT = Path(__file__).resolve().parents[2]
+LESSON = "02_scan_conversion.ipynb"
+SCREENSHOTS = Path(__file__).resolve().parent / "screenshots"
+CHROMIUM_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+SERVER_START_S = 90
+RUN_ALL_S = 120
+STEP_S = 10  # one click of Next: a round trip to the kernel and back
+KERNEL_IDLE = re.compile(r"^(?!No Kernel).* \| Idle$")  # the status bar, once a kernel is up
+NEXT_CLICKS = 6
+NEXT_LABEL = re.compile(r"^\s*(next\b.*|▶\|)\s*$", re.IGNORECASE)  # Stepper.next_button
+STEP_LABEL = re.compile(r"^step \d+ / \d+")  # Stepper.label: "step k / n: <event kind>"
+AET_CAPTION = re.compile(r"^\s*AET\b")  # ScanConversionView.aet_html: "AET of row y" / "AET: empty"
+
+pytestmark = pytest.mark.xdist_group("browser")
+
+
+def _free_port():
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def _wait_until_answering(url, server, log_path):
+    deadline = time.monotonic() + SERVER_START_S
+    while time.monotonic() < deadline:
+        if server.poll() is not None:
+            pytest.fail(f"JupyterLab exited with {server.returncode}:\n{log_path.read_text()}")
+        try:
+            with urllib.request.urlopen(url, timeout=5) as response:
+                if response.status == 200:
+                    return
+        except (urllib.error.URLError, OSError):
+            pass
+        time.sleep(0.5)
+    pytest.fail(f"JupyterLab did not answer {url} in {SERVER_START_S} s:\n{log_path.read_text()}")
+
+
+@pytest.fixture(scope="module")
+def lab_url(tmp_path_factory):
+    """Base URL of a JupyterLab serving a fresh copy of notebooks/, with the project's settings."""
+    tmp = tmp_path_factory.mktemp("lab")
+    root_dir = tmp / "notebooks"
+    shutil.copytree(
+        ROOT / "notebooks", root_dir, ignore=shutil.ignore_patterns(".*", "__pycache__")
+    )
+    env = dict(
+        os.environ,
+        # the news-popup override (see the Makefile's `lab` target), and no user settings
+        JUPYTER_CONFIG_PATH=os.pathsep.join(
+            p for p in [str(ROOT / ".jupyter"), os.environ.get("JUPYTER_CONFIG_PATH")] if p
+        ),
+        JUPYTERLAB_SETTINGS_DIR=str(tmp / "user-settings"),
+        JUPYTERLAB_WORKSPACES_DIR=str(tmp / "workspaces"),
+    )
+    port = _free_port()
+    log_path = tmp / "jupyterlab.log"
+    with log_path.open("wb") as log:
+        server = subprocess.Popen(
+            [
+                sys.executable, "-m", "jupyter", "lab", "--no-browser", "--allow-root",
+                f"--port={port}", "--ServerApp.ip=127.0.0.1", "--ServerApp.port_retries=0",
+                "--ServerApp.token=", "--ServerApp.password=",
+                f"--ServerApp.root_dir={root_dir}",
+            ],
+            env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+        )  # fmt: skip
+    try:
+        url = f"http://127.0.0.1:{port}"
+        _wait_until_answering(f"{url}/lab", server, log_path)
+        yield url
+    finally:
+        server.terminate()
+        try:
+            server.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            server.kill()
+            server.wait(timeout=15)
+
+
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory):
+    """Headless Debian chromium with a fresh profile, driven by Playwright.
+
+    Skips only when there is no chromium.
+    """
+    executable = shutil.which("chromium") or "/usr/bin/chromium"
+    if not os.access(executable, os.X_OK):
+        reason = "no chromium found (make test installs Debian's chromium where it can)"
+        print(f"scanviz: skipping the browser test: {reason}")
+        pytest.skip(reason)
+    profile = tmp_path_factory.mktemp("chromium-profile")
+    with sync_playwright() as playwright:
+        context = playwright.chromium.launch_persistent_context(
+            profile,
+            executable_path=executable,
+            args=CHROMIUM_FLAGS,
+            viewport={"width": 1400, "height": 1000},
+            timeout=60_000,
+        )
+        try:
+            yield context
+        finally:
+            context.close()
+
+
+def _screenshot(page: Page, name):
+    SCREENSHOTS.mkdir(exist_ok=True)
+    path = SCREENSHOTS / name
+    page.screenshot(path=path, timeout=30_000)
+    print(f"screenshot: {path}")
+    return path
+
+
+def _run_all_cells(page: Page, notebook_stem):
+    """Run > Run All Cells, then wait until every code cell has run and the kernel is idle."""
+    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for(timeout=60_000)
+    page.get_by_role("menuitem", name="Run", exact=True).click()
+    page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
+    try:  # Run All stops at the first error, leaving the cells below it unrun
+        page.wait_for_function(
+            """() => {
+                const prompts = [...document.querySelectorAll('.jp-CodeCell .jp-InputPrompt')];
+                const indicator = document.querySelector('.jp-Notebook-ExecutionIndicator');
+                return prompts.some(p => /\\[\\d+\\]/.test(p.textContent))
+                    && !prompts.some(p => p.textContent.includes('[*]'))
+                    && indicator?.dataset.status === 'idle';
+            }""",
+            timeout=RUN_ALL_S * 1000,
+        )
+    finally:
+        _screenshot(page, f"{notebook_stem}-run-all.png")
+    tracebacks = page.locator(".jp-OutputArea-output", has_text="Traceback (most recent call last)")
+    assert tracebacks.count() == 0, tracebacks.first.inner_text()
+    prompts = page.locator(".jp-CodeCell .jp-InputPrompt").all_text_contents()
+    assert all(re.search(r"\[\d+\]", prompt) for prompt in prompts), f"cells left unrun: {prompts}"
+
+
+def _click_next(page: Page, stepper, times):
+    """Click the stepper's Next `times` times, each time waiting for its step label to move on."""
+    next_button = stepper.locator("button.jupyter-button").filter(has_text=NEXT_LABEL).first
+    label = stepper.locator(".widget-label", has_text=STEP_LABEL).first
+    for _ in range(times):
+        before = label.text_content()
+        next_button.click()
+        page.wait_for_function(
+            "([label, before]) => label.textContent !== before",
+            arg=[label.element_handle(), before],
+            timeout=STEP_S * 1000,
+        )
+
+
+def test_lesson_runs_and_steps_in_jupyterlab(lab_url, browser):
+    page = browser.new_page()
+    page.set_default_timeout(30_000)
+    page.goto(f"{lab_url}/lab/tree/{LESSON}", wait_until="domcontentloaded")
+    page.locator(".jp-NotebookPanel .jp-Cell").first.wait_for(timeout=60_000)
+    _run_all_cells(page, Path(LESSON).stem)
+
+    steppers = page.locator(".jp-OutputArea-output").filter(
+        has=page.locator("button.jupyter-button").filter(has_text=NEXT_LABEL)
+    )
+    assert steppers.count() > 0, f"{LESSON} shows no stepper with a Next button"
+    stepper = steppers.first
+    stepper.scroll_into_view_if_needed()
+    aet = stepper.locator(".widget-html-content").filter(has_text=AET_CAPTION).first
+    before = aet.text_content()
+    _click_next(page, stepper, NEXT_CLICKS)
+    after = aet.text_content()
+    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
+    _screenshot(page, f"{Path(LESSON).stem}-stepped.png")
+    assert after != before, f"the AET table did not change in {NEXT_CLICKS} steps:\n{before}"
