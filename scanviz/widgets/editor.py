@@ -14,7 +14,7 @@ import numpy as np
 from ..geometry import Polygon
 from ..raster import scan_convert
 from ._common import html_table, new_figure, say, status_label
-from .stepper import figure_widget, refresh_figure
+from .stepper import coverage_image, figure_widget, refresh_figure
 
 EDGE_COLUMNS = ("edge", "(x0, y0)", "(x1, y1)", "bucket", "row_end", "x", "dx/dy", "winding")
 GRAB_RADIUS = 0.5  # pixels: how near a click must be to a vertex to drag it
@@ -86,18 +86,7 @@ class PolygonEditor:
     def __init__(self, vertices, width: int, height: int, *, sample: str = "corner") -> None:
         self.width, self.height, self.sample = int(width), int(height), sample
         fig, (ax,) = new_figure(1, width=5.0, height=5.0 * height / max(width, height) + 0.4)
-        self.coverage = ax.imshow(
-            np.zeros((height, width), bool),
-            origin="lower",
-            cmap="Blues",
-            vmin=0,
-            vmax=1.6,
-            extent=(0, width, 0, height),
-            interpolation="nearest",
-        )
-        ax.set_xticks(range(width + 1), minor=True)
-        ax.set_yticks(range(height + 1), minor=True)
-        ax.grid(which="minor", color="0.8", lw=0.5)
+        self.coverage = coverage_image(ax, np.zeros((height, width), bool))
         (self.outline,) = ax.plot([], [], color="crimson", lw=1.5)
         (self.handles,) = ax.plot([], [], "o", color="crimson", ms=6)
         ax.set_xlim(-0.5, width + 0.5)

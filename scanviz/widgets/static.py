@@ -33,6 +33,8 @@ def plot_scan(polygon, result, *, sample: str = "corner", step: int | None = Non
     """
     import matplotlib.pyplot as plt
 
+    from .stepper import coverage_image
+
     polygon = Polygon(polygon)
     height, width = result.mask.shape
     if ax is None:
@@ -43,19 +45,7 @@ def plot_scan(polygon, result, *, sample: str = "corner", step: int | None = Non
         covered = result.trace.image_at(step, width, height) > 0
         rows = [e.y for e in result.trace[:step] if hasattr(e, "y")]
         row = rows[-1] if rows else None
-    ax.imshow(
-        covered,
-        origin="lower",
-        cmap="Blues",
-        vmin=0,
-        vmax=1.6,
-        alpha=0.9,
-        extent=(0, width, 0, height),
-        interpolation="nearest",
-    )
-    ax.set_xticks(range(width + 1), minor=True)
-    ax.set_yticks(range(height + 1), minor=True)
-    ax.grid(which="minor", color="0.8", linewidth=0.5)
+    coverage_image(ax, covered, alpha=0.9)
     offset = sample_offset(sample)
     ys, xs = np.mgrid[0:height, 0:width]
     ax.scatter(xs[~covered] + offset, ys[~covered] + offset, s=6, color="0.6", zorder=3)

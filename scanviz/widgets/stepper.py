@@ -15,6 +15,7 @@ from collections.abc import Iterable
 from typing import Protocol, runtime_checkable
 
 import ipywidgets as widgets
+import numpy as np
 
 from ..trace import Trace
 from .model import StepModel
@@ -84,6 +85,26 @@ def draw_pixel_grid(axes, extent: tuple[int, int, int, int]) -> None:
     lines = [[(x, y_start), (x, y_end)] for x in range(x_start, x_end + 1)]
     lines += [[(x_start, y), (x_end, y)] for y in range(y_start, y_end + 1)]
     axes.add_collection(LineCollection(lines, colors="0.85", linewidths=0.5, zorder=1.5))
+
+
+def coverage_image(axes, covered: np.ndarray, *, alpha: float | None = None):
+    """Show a (height, width) coverage array as filled pixel squares on a pixel grid (y up).
+
+    Returns the AxesImage, to be updated with ``set_data``.
+    """
+    height, width = covered.shape
+    image = axes.imshow(
+        covered,
+        origin="lower",
+        cmap="Blues",
+        vmin=0,
+        vmax=1.6,
+        alpha=alpha,
+        extent=(0, width, 0, height),
+        interpolation="nearest",
+    )
+    draw_pixel_grid(axes, (0, width, 0, height))
+    return image
 
 
 class Stepper:
