@@ -309,6 +309,24 @@ def prefix_sum_rows(image, first, stop):
 
 
 @njit(cache=True)
+def prefix_sum_marked(image, marked):
+    """`prefix_sum_rows` of rows whose marks lie in columns [marked[0, y], marked[1, y]).
+
+    Left of the first mark the sum is 0; right of the last it stays at the
+    row's total, nonzero when a span reaches the right edge (its -1 at x =
+    width was dropped).
+    """
+    for y in range(image.shape[0]):
+        row = image[y, marked[0, y] : marked[1, y]]  # a view: its indices are known >= 0
+        total = 0
+        for x in range(row.shape[0]):
+            total += row[x]
+            row[x] = total
+        if total:
+            image[y, marked[1, y] :] = total
+
+
+@njit(cache=True)
 def count_spans(spans, width, height):
     """(height, width) int32 count of the (K, 3) spans covering each sample."""
     image = np.zeros((height, width), np.int32)
@@ -328,14 +346,26 @@ def fill_polygons(units, contour_offsets, polygon_contours, scales, width, heigh
     image = np.zeros((height, width), np.int32)
     if image.size == 0:
         return image
-    first_row, stop_row = height, 0
-    for p in range(scales.shape[0]):
+    polygons = scales.shape[0]
+    bounds = np.empty((polygons, 4), np.int64)  # rows [first, stop), columns [low, high)
+    for p in range(polygons):
+        part = units[
+            contour_offsets[polygon_contours[p]] : contour_offsets[polygon_contours[p + 1]]
+        ]
+        bounds[p, 0] = max(ceil_div(part[:, 1].min(), scales[p]), 0)
+        bounds[p, 1] = min(ceil_div(part[:, 1].max(), scales[p]), height)
+        bounds[p, 2] = max(ceil_div(part[:, 0].min(), scales[p]), 0)
+        bounds[p, 3] = min(ceil_div(part[:, 0].max(), scales[p]), width - 1) + 1
+    marked = np.empty((2, height), np.int64)  # row y's marks lie in columns [marked[:, y])
+    marked[0], marked[1] = width, 0
+    # Bottom to top: polygons scanned one after the other then mark nearby rows (cache).
+    for p in np.argsort(bounds[:, 0]):
         offsets = contour_offsets[polygon_contours[p] : polygon_contours[p + 1] + 1]
-        ys = units[offsets[0] : offsets[-1], 1]
-        first_row = min(first_row, max(ceil_div(ys.min(), scales[p]), 0))
-        stop_row = max(stop_row, min(ceil_div(ys.max(), scales[p]), height))
         scan_polygon(units, offsets, scales[p], width, height, evenodd, True, np.float64, image)
-    prefix_sum_rows(image, first_row, stop_row)
+        for y in range(bounds[p, 0], bounds[p, 1]):
+            marked[0, y] = min(marked[0, y], bounds[p, 2])
+            marked[1, y] = max(marked[1, y], bounds[p, 3])
+    prefix_sum_marked(image, marked)
     return image
 
 

@@ -333,3 +333,19 @@ def test_fill_polygons_rejects_bad_input():
         fill_polygons(3, 4, 4)
     with pytest.raises(ValueError, match="'rule'"):
         fill_polygons([], 4, 4, rule="winding")
+
+
+def test_fill_polygons_prefix_sums_only_marked_columns_and_fills_to_the_right_edge():
+    # Rows are summed only across the polygons' column ranges: spans clipped at the right
+    # edge (no -1 mark) must still fill to it, spans left of x = 0 must start at 0, and
+    # polygons given top first (scanned bottom first) must count the same.
+    polygons = [
+        [(5.5, 9.0), (30.0, 10.5), (29.0, 17.0), (6.0, 16.0)],  # beyond the right edge
+        [(-8.0, 0.5), (3.25, 1.0), (2.0, 7.5)],  # beyond the left edge
+        [(10.0, -3.0), (19.5, 2.0), (12.0, 12.0), (15.0, 4.0)],
+        [(30.0, 3.0), (40.0, 3.0), (35.0, 8.0)],  # off the raster entirely
+    ]
+    for rule in RULES:
+        expected = mask_sum([Polygon(p) for p in polygons], WIDTH, HEIGHT, rule=rule)
+        np.testing.assert_array_equal(fill_polygons(polygons, WIDTH, HEIGHT, rule=rule), expected)
+    assert fill_polygons(polygons, WIDTH, HEIGHT)[12, WIDTH - 1] == 1
