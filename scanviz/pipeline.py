@@ -209,7 +209,7 @@ def prepare(
     clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
     stats = RenderStats(objects=len(scene.objects))
     rows = {"xyzw": [], "values": [], "sizes": [], "flat": [], "object": [], "opacity": []}
-    closed_any = cull_ran = False
+    cull_ran = False
     for index, obj in enumerate(scene.objects):
         o = _object_in_world(obj)
         world, faces, sizes, corners = o.world, o.faces, o.sizes, o.corners
@@ -220,7 +220,6 @@ def prepare(
             transform_vertices(scene.camera, world, width, height, trace=tracer, object=index)
         clip = np.hstack([world, np.ones((len(world), 1))]) @ clip_from_world.T
         keep = np.ones(len(faces), bool)
-        closed_any |= obj.mesh.closed
         # Back faces of a transparent object show through it where the visibility can show them.
         see_through = transparent_visible and not obj.material.opaque
         if (obj.mesh.closed and not see_through) if cull is None else cull:

@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..trace.events import EdgeTableBuilt, EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
+from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
 from .fixed import SnappedPolygon
-from .scanline import ActiveEdge, _edge_record, _emit_row, _insertion_sort, build_edge_table
+from .scanline import ActiveEdge, _emit_row, _insertion_sort, bucketed_edge_table
 
 # --- the formulas, shared with the compiled kernel -----------------------------------------
 
@@ -392,14 +392,7 @@ def interpolate_rows(
     """
     exact = np.int64 if snapped.compilable else int  # operand type of `crossing_x`, as compiled
     vertex_values = channels.tolist()
-    edges = build_edge_table(snapped)
-    if trace is not None and trace.wants("edge_table_built", polygon=polygon):
-        trace.emit(EdgeTableBuilt(polygon, tuple(_edge_record(e, snapped) for e in edges)))
-    buckets: dict[int, list[ActiveEdge]] = {}
-    for edge in edges:
-        row_start = max(edge.bucket, 0)  # rows below the raster are never scanned
-        if row_start < min(edge.row_end, height):
-            buckets.setdefault(row_start, []).append(edge)
+    _, buckets = bucketed_edge_table(snapped, height, trace=trace, polygon=polygon)
     interpolants: dict[int, EdgeInterpolant] = {}  # by edge id, for the active edges
     active: list[ActiveEdge] = []
     pending = sorted(buckets)

@@ -260,6 +260,24 @@ def _row_spans(active: list[ActiveEdge], evenodd: bool, width: int):
             yield start, end, winding
 
 
+def bucketed_edge_table(
+    snapped: SnappedPolygon, height: int, arithmetic: str = "exact", trace=None, polygon: int = 0
+) -> tuple[list[ActiveEdge], dict[int, list[ActiveEdge]]]:
+    """The edge table (traced as ``edge_table_built``) and its edges by the first raster row they cross.
+
+    Rows below the raster are never scanned: an edge starting there enters at row 0.
+    """
+    edges = build_edge_table(snapped, arithmetic)
+    if trace is not None and trace.wants("edge_table_built", polygon=polygon):
+        trace.emit(EdgeTableBuilt(polygon, tuple(_edge_record(e, snapped) for e in edges)))
+    buckets: dict[int, list[ActiveEdge]] = {}
+    for edge in edges:
+        row_start = max(edge.bucket, 0)
+        if row_start < min(edge.row_end, height):
+            buckets.setdefault(row_start, []).append(edge)
+    return edges, buckets
+
+
 def scan_reference(
     snapped: SnappedPolygon,
     width: int,
@@ -275,15 +293,8 @@ def scan_reference(
     Returns the spans as a (K, 3) ndarray of int64 rows (y, x_start, x_end),
     sorted by y then x, clipped to the raster, and the `ScanStats`.
     """
-    edges = build_edge_table(snapped, arithmetic)
+    edges, buckets = bucketed_edge_table(snapped, height, arithmetic, trace, polygon)
     stats = ScanStats(edges=len(edges), kept_for_topology=sum(e.bucket >= e.row_end for e in edges))
-    if trace is not None and trace.wants("edge_table_built", polygon=polygon):
-        trace.emit(EdgeTableBuilt(polygon, tuple(_edge_record(e, snapped) for e in edges)))
-    buckets: dict[int, list[ActiveEdge]] = {}
-    for edge in edges:
-        row_start = max(edge.bucket, 0)  # rows below the raster are never scanned
-        if row_start < min(edge.row_end, height):
-            buckets.setdefault(row_start, []).append(edge)
     spans: list[tuple[int, int, int]] = []
     active: list[ActiveEdge] = []
     pending = sorted(buckets)
