@@ -1,78 +1,209 @@
 """JSON form of a trace: ``{"events": [{"kind": ..., field: value, ...}, ...]}``.
 
-Values map as: int, float, bool, str and None as themselves (floats keep every
-bit: JSON numbers are written with `repr`); `fractions.Fraction` as the string
-``"p/q"``; tuples as lists; nested records as objects. Reading uses each
-event class's type hints, so ``Trace.from_json(t.to_json()) == t`` exactly.
+Values map as: int, bool, str and None as themselves; finite floats as JSON
+numbers with every bit kept (`repr`), non-finite ones as the strings
+``"inf"``, ``"-inf"``, ``"nan"`` (the output is strict JSON); a
+`fractions.Fraction` as the string ``"p/q"``; tuples as lists; nested
+records as objects. Reading is driven by each event class's annotations
+(`scanviz.trace.schema`), so ``trace_from_json(trace_to_json(t)) == t``
+exactly, and malformed text raises a ValueError naming the JSON path and
+the rule, before anything large is built: text over the file limit, or
+nested deeper than `MAX_DEPTH`, or holding a number of more than `DIGITS`
+digits, is refused unparsed.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import json
-import types
+import math
+import re
 import typing
 from fractions import Fraction
-from functools import cache
 
+from ..limits import FILE_ENV, ResourceLimitError, check_memory, current_file_limit, format_size
 from .events import EVENT_TYPES, Event
+from .schema import DIGITS, Invalid, Nested, shown
+
+if typing.TYPE_CHECKING:
+    from .recorder import Trace
+
+_EVENT_NODES = {kind: Nested(cls) for kind, cls in EVENT_TYPES.items()}
+MAX_DEPTH = 2 + max(node.depth for node in _EVENT_NODES.values())
+"""Deepest nesting of arrays and objects a trace can need (the root object is level 1)."""
+
+BYTES_PER_CHARACTER = 32
+"""Peak memory of parsing, per character of JSON text (measured worst case: ``[{},{},...]``)."""
+
+_KIND = frozenset({"kind"})
+_NON_FINITE_TEXT = {math.inf: "inf", -math.inf: "-inf"}
+_CONSTANTS = {"Infinity": "inf", "-Infinity": "-inf", "NaN": "nan"}  # non-standard literals
+_STRING = r'"[^"\\]*(?:\\.[^"\\]*)*(?:"|\\?\Z)'  # to the end if unterminated: linear time
+_STRINGS = re.compile(_STRING, re.DOTALL)
+_NOT_BRACKETS = re.compile(r"[^\[\]{}]+")
+_INNERMOST = re.compile(r"\[\]|\{\}")
+_LONG_NUMBER = re.compile(rf"(?<!\d)\d{{{DIGITS + 1}}}")  # starts only at a run: linear time
+_TOKENS = re.compile(rf"{_STRING}|[\[\]{{}},:]|{_LONG_NUMBER.pattern}", re.DOTALL)
 
 
 def encode(value: object) -> object:
-    """A JSON-ready form of an event, record, or field value."""
+    """A JSON-ready form of an event, record, or field value (strict JSON: no NaN literals)."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         fields = {f.name: encode(getattr(value, f.name)) for f in dataclasses.fields(value)}
         return {"kind": value.kind, **fields} if isinstance(value, Event) else fields
     if isinstance(value, tuple | list):
         return [encode(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return _NON_FINITE_TEXT.get(value, "nan")
     if isinstance(value, Fraction):
         return f"{value.numerator}/{value.denominator}"
     return value
 
 
-@cache
-def _hints(cls: type) -> dict[str, object]:
-    return typing.get_type_hints(cls)
-
-
-def decode(hint: object, data: object) -> object:
-    """Rebuild a value of type `hint` from its JSON form."""
-    origin = typing.get_origin(hint)
-    if origin in (typing.Union, types.UnionType):
-        options = typing.get_args(hint)
-        if data is None and type(None) in options:
-            return None
-        return decode(next(o for o in options if o is not type(None)), data)
-    if origin is tuple:
-        item = typing.get_args(hint)[0]
-        return tuple(decode(item, v) for v in data)  # type: ignore[union-attr]
-    if hint is Fraction:
-        return Fraction(data)  # type: ignore[arg-type]
-    if hint is float:
-        return float(data)  # type: ignore[arg-type]
-    if isinstance(hint, type) and dataclasses.is_dataclass(hint):
-        hints = _hints(hint)
-        return hint(
-            **{f.name: decode(hints[f.name], data[f.name]) for f in dataclasses.fields(hint)}
-        )  # type: ignore[index]
-    return data
-
-
-def event_from_dict(data: dict) -> Event:
-    kind = data.get("kind")
-    if kind not in EVENT_TYPES:
-        raise ValueError(f"unknown event kind {kind!r}; known: {sorted(EVENT_TYPES)}")
-    return decode(EVENT_TYPES[kind], data)  # type: ignore[return-value]
-
-
 def trace_to_json(trace: typing.Iterable[Event], **dumps_options: object) -> str:
+    """The JSON text of a sequence of events; `dumps_options` go to `json.dumps`."""
     return json.dumps({"events": [encode(e) for e in trace]}, **dumps_options)  # type: ignore[arg-type]
 
 
-def trace_from_json(text: str):
+def _close_kind(kind: str) -> str:
+    close = difflib.get_close_matches(kind, EVENT_TYPES, n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def event_from_dict(data: object) -> Event:
+    """The event of one decoded JSON object; raises `schema.Invalid` with the path inside it."""
+    if not isinstance(data, dict):
+        raise Invalid(f"must be an event object with a 'kind'; got {shown(data)}")
+    if "kind" not in data:
+        raise Invalid("has no 'kind' naming its event type")
+    kind = data["kind"]
+    if not isinstance(kind, str):
+        raise Invalid(f"must be a str naming an event kind; got {shown(kind)}").at(".kind")
+    if kind not in EVENT_TYPES:
+        raise Invalid(
+            f"is an unknown event kind {kind!r}{_close_kind(kind)}; known: {sorted(EVENT_TYPES)}"
+        ).at(".kind")
+    return _EVENT_NODES[kind].decode(data, ignore=_KIND)  # type: ignore[return-value]
+
+
+def _first_problem(text: str) -> str | None:
+    """The "path: rule" of the first container deeper than `MAX_DEPTH` or number over `DIGITS` digits.
+
+    Iterative on purpose: a recursive parser is what deep text breaks.
+    """
+    stack: list[list] = []  # per open container: [is_object, current key or index]
+    key = None
+    for match in _TOKENS.finditer(text):
+        token = match.group()
+        if token in "[{":
+            if len(stack) == MAX_DEPTH:
+                return (
+                    f"{_path(stack)}: nests deeper than {MAX_DEPTH} levels of arrays and "
+                    "objects, the most a trace needs"
+                )
+            stack.append([token == "{", None if token == "{" else 0])
+        elif token in "]}":
+            if not stack:
+                return None  # unbalanced: json.loads reports where
+            stack.pop()
+        elif token == ",":
+            if stack and not stack[-1][0]:
+                stack[-1][1] += 1
+        elif token == ":":
+            if stack and key is not None:
+                stack[-1][1] = key
+        elif token[0] == '"':
+            key = token
+        else:
+            return f"{_path(stack)}: is a number of more than {DIGITS} digits"
+    return None
+
+
+def _key(token: str) -> str:
+    try:
+        return json.loads(token)
+    except ValueError:  # a bad escape, or the string runs to the end of the text
+        return token.strip('"')
+
+
+def _path(stack: list[list]) -> str:
+    parts = [
+        (f".{_key(step)}" if step is not None else "") if is_object else f"[{step}]"
+        for is_object, step in stack
+    ]
+    return "".join(parts).lstrip(".") or "the top level"
+
+
+def check_structure(text: str) -> None:
+    """Raise ValueError naming the path if `text` nests too deep or holds a too long number.
+
+    The test runs at C speed on the text without its strings; only text that
+    fails it is walked token by token to name the path.
+    """
+    outside_strings = _STRINGS.sub("", text)
+    brackets = _NOT_BRACKETS.sub("", outside_strings)
+    for _ in range(MAX_DEPTH):  # each pass removes the innermost level
+        brackets = _INNERMOST.sub("", brackets)
+    if brackets or _LONG_NUMBER.search(outside_strings):
+        problem = _first_problem(text)
+        if problem is not None:
+            raise ValueError(f"trace JSON at {problem}")
+
+
+def check_size(text: str) -> None:
+    """Refuse text larger than the file limit, or whose parse would pass the memory limit."""
+    limit = current_file_limit()
+    if len(text) > limit:
+        raise ResourceLimitError(
+            f"trace JSON of {len(text)} characters is larger than the file limit of "
+            f"{format_size(limit)} (raise it with scanviz.limits.file_limit(...) or {FILE_ENV})"
+        )
+    check_memory(len(text) * BYTES_PER_CHARACTER, f"parsing {len(text)} characters of trace JSON")
+
+
+def parse(text: object) -> object:
+    """The JSON value of `text`, refused unparsed if too large, too deep or with too long numbers."""
+    if not isinstance(text, str):
+        raise TypeError(f"'text' must be a str of trace JSON; got {shown(text)}")
+    check_size(text)
+    check_structure(text)
+    try:
+        return json.loads(text.removeprefix("\ufeff"), parse_constant=_CONSTANTS.__getitem__)
+    except ValueError as error:  # JSONDecodeError, or Python's limit on integer digits
+        raise ValueError(f"trace JSON is not valid JSON: {error}") from None
+
+
+def trace_from_json(text: str) -> Trace:
+    """Read a trace from its JSON text (`Trace.from_json`).
+
+    Every outcome is the Trace or a ValueError naming the JSON path and the
+    rule broken (TypeError if `text` is not a str).
+
+    Examples
+    --------
+    >>> trace_from_json('{"events": [{"kind": "span", "polygon": 0, "y": 1, "x_start": 2, "x_end": 5, "winding": 1}]}')
+    Trace(1 events: {'span': 1})
+    >>> trace_from_json('{"events": [{"kind": "span", "polygon": 0, "y": 1.5, "x_start": 2, "x_end": 5, "winding": 1}]}')
+    Traceback (most recent call last):
+    ...
+    ValueError: trace JSON at events[0].y: must be int; got 1.5 (float)
+    """
     from .recorder import Trace
 
-    data = json.loads(text)
+    data = parse(text)
     if not isinstance(data, dict) or not isinstance(data.get("events"), list):
-        raise ValueError("trace JSON must be an object with an 'events' list")
-    return Trace(event_from_dict(e) for e in data["events"])
+        raise ValueError(
+            f"trace JSON must be an object with an 'events' list; got {type(data).__name__}"
+            + (f" with keys {sorted(data)[:10]}" if isinstance(data, dict) else "")
+        )
+    extra = sorted(data.keys() - {"events"})
+    if extra:
+        raise ValueError(f"trace JSON has unknown top-level keys {extra}; only 'events' is allowed")
+    events = []
+    for index, item in enumerate(data["events"]):
+        try:
+            events.append(event_from_dict(item))
+        except Invalid as error:
+            raise ValueError(f"trace JSON at events[{index}]{error.path()}: {error.rule}") from None
+    return Trace(events)

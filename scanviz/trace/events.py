@@ -4,6 +4,8 @@ Every event class sets a class-level ``kind`` and registers itself, so a trace
 can be written to JSON and read back exactly (see `scanviz.trace.codec`).
 Fields that filters understand: ``polygon`` (which input polygon), ``y`` (the
 scanline or pixel row), and an x-extent given by ``x`` or ``x_start``/``x_end``.
+Every record checks its field types against its annotations when built
+(`scanviz.trace.schema`): a wrong type raises TypeError naming the field.
 """
 
 from __future__ import annotations
@@ -12,11 +14,26 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import ClassVar
 
+from .schema import validate
+
 EVENT_TYPES: dict[str, type[Event]] = {}
 
 
+class Record:
+    """Base of trace records and events: field types are checked against the annotations.
+
+    >>> Span(polygon="x", y=0, x_start=0, x_end=1, winding=1)
+    Traceback (most recent call last):
+    ...
+    TypeError: Span field 'polygon' must be int; got 'x' (str)
+    """
+
+    __slots__ = ()
+    __post_init__ = validate  # called by the dataclass __init__ (a plain function: one frame less)
+
+
 @dataclass(frozen=True)
-class Event:
+class Event(Record):
     """Base of all trace events; subclasses set ``kind`` and are registered by it."""
 
     kind: ClassVar[str] = "event"
@@ -32,7 +49,7 @@ class Event:
 
 
 @dataclass(frozen=True)
-class EdgeRecord:
+class EdgeRecord(Record):
     """One polygon edge as the edge table holds it (pixel coordinates, caller's frame).
 
     ``bucket`` is the first sample row the edge crosses, ceil(ymin); the edge
@@ -61,7 +78,7 @@ class EdgeRecord:
 
 
 @dataclass(frozen=True)
-class AetEntry:
+class AetEntry(Record):
     """One active edge on the current row: its x there, dx/dy, top y and winding."""
 
     edge: int
@@ -123,7 +140,7 @@ class Span(Event):
 
 
 @dataclass(frozen=True)
-class EdgeFunctionRecord:
+class EdgeFunctionRecord(Record):
     """Edge ``edge`` (vertex i to vertex i+1 mod 3): E(p) = a*px + b*py + c in grid units.
 
     ``owns_boundary`` says whether a sample exactly on the edge (E = 0) is inside:
@@ -223,7 +240,7 @@ class LineStep(Event):
 
 
 @dataclass(frozen=True)
-class LightTerm:
+class LightTerm(Record):
     """One light's share of the color of an illuminated point (world space).
 
     ``to_light`` is L, the unit vector from the point toward the light (zero if
@@ -353,7 +370,7 @@ class PolygonSetup(Event):
 
 
 @dataclass(frozen=True)
-class EdgeValueEntry:
+class EdgeValueEntry(Record):
     """One active edge on the current row: its crossing x and its values there, with d/dy."""
 
     edge: int
@@ -421,7 +438,7 @@ class DepthTest(Event):
 
 
 @dataclass(frozen=True)
-class EdgeMaskEntry:
+class EdgeMaskEntry(Record):
     """Edge `edge` in one pixel: the bits at or right of its crossings, and its winding."""
 
     edge: int
@@ -430,7 +447,7 @@ class EdgeMaskEntry:
 
 
 @dataclass(frozen=True)
-class MaskBufferPixel:
+class MaskBufferPixel(Record):
     """A pixel of the mask buffer that some active edge crosses.
 
     ``carry`` is the winding entering the pixel from the left on each
@@ -446,7 +463,7 @@ class MaskBufferPixel:
 
 
 @dataclass(frozen=True)
-class MaskRun:
+class MaskRun(Record):
     """Pixels ``x_start <= x < x_end`` that no edge crosses, all with mask `mask` (from the carry)."""
 
     x_start: int
@@ -496,7 +513,7 @@ class EdgeMask(Event):
 
 
 @dataclass(frozen=True)
-class FragmentRecord:
+class FragmentRecord(Record):
     """One fragment as a pixelstruct holds it (thesis Fig. 6.6, without the link).
 
     ``z`` and ``zmax`` are its depth range (smaller is nearer); ``area`` the
@@ -564,7 +581,7 @@ class FragmentsDiscarded(Event):
 
 
 @dataclass(frozen=True)
-class PackStep:
+class PackStep(Record):
     """One level of the fragment packer (thesis eqs. 6.4-6.6) on one region of the pixel.
 
     The region ``region`` (bits, M_Q(i+1)) of weight ``weight`` (Q_{i+1}) is

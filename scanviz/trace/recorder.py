@@ -2,10 +2,17 @@
 
 from __future__ import annotations
 
+import difflib
+import operator
 from collections.abc import Iterable, Iterator, Sequence
 from typing import Protocol, runtime_checkable
 
+import numpy as np
+
+from ..conventions import check_raster_size
+from ..limits import check_memory
 from .events import EVENT_TYPES, Event
+from .schema import shown
 
 
 @runtime_checkable
@@ -21,14 +28,51 @@ class Tracer(Protocol):
     def emit(self, event: Event) -> None: ...
 
 
-def _half_open(name: str, bounds: object) -> tuple[int, int] | None:
-    if bounds is None:
-        return None
+def _int(name: str, value: object) -> int:
+    if isinstance(value, bool):
+        raise TypeError(f"{name} must be an int; got {shown(value)}")
     try:
-        low, high = (int(v) for v in bounds)  # type: ignore[union-attr]
-    except (TypeError, ValueError):
-        raise ValueError(f"{name!r} must be a (start, stop) pair of ints; got {bounds!r}") from None
-    return low, high
+        return operator.index(value)  # type: ignore[arg-type]
+    except TypeError:
+        raise TypeError(f"{name} must be an int; got {shown(value)}") from None
+
+
+def _ints(name: str, value: object, rule: str, length: int | None = None) -> tuple[int, ...] | None:
+    """`value` as a tuple of ints (exactly `length` of them if given), or None if None."""
+    if value is None:
+        return None
+    if isinstance(value, str | bytes) or not isinstance(value, Iterable):
+        raise TypeError(f"{name!r} must be {rule}; got {shown(value)}")
+    values = tuple(_int(f"{name!r}[{i}]", v) for i, v in enumerate(value))
+    if length is not None and len(values) != length:
+        raise ValueError(f"{name!r} must be {rule}; got {len(values)} values: {shown(value)}")
+    return values
+
+
+def _kinds(kinds: object) -> frozenset[str] | None:
+    """`kinds` (None, one kind, or an iterable of kinds) as a set of known event kinds."""
+    if kinds is None:
+        return None
+    if isinstance(kinds, str):
+        kinds = [kinds]
+    if not isinstance(kinds, Iterable):
+        raise TypeError(
+            f"'kinds' must be an event kind (str) or an iterable of them; got {shown(kinds)}"
+        )
+    kinds = list(kinds)
+    for index, kind in enumerate(kinds):
+        if not isinstance(kind, str):
+            raise TypeError(f"'kinds'[{index}] must be a str; got {shown(kind)}")
+    unknown = sorted(set(kinds) - EVENT_TYPES.keys())
+    if unknown:
+        close = [(k, difflib.get_close_matches(k, EVENT_TYPES, n=1)) for k in unknown]
+        hint = ", ".join(f"{m[0]!r} for {k!r}" for k, m in close if m)
+        raise ValueError(
+            f"'kinds' has unknown event kinds {unknown}"
+            + (f" (did you mean {hint}?)" if hint else "")
+            + f"; known: {sorted(EVENT_TYPES)}"
+        )
+    return frozenset(kinds)
 
 
 class Filter:
@@ -42,19 +86,11 @@ class Filter:
         polygons: Iterable[int] | None = None,
         region: tuple[int, int, int, int] | None = None,
     ) -> None:
-        if isinstance(kinds, str):
-            kinds = [kinds]
-        self.kinds = None if kinds is None else frozenset(kinds)
-        unknown = sorted((self.kinds or frozenset()) - EVENT_TYPES.keys())
-        if unknown:
-            raise ValueError(
-                f"'kinds' has unknown event kinds {unknown}; known: {sorted(EVENT_TYPES)}"
-            )
-        self.rows = _half_open("rows", rows)
-        self.polygons = None if polygons is None else frozenset(int(p) for p in polygons)
-        if region is not None and len(region) != 4:
-            raise ValueError(f"'region' must be (x_start, y_start, x_end, y_end); got {region!r}")
-        self.region = None if region is None else tuple(int(v) for v in region)
+        self.kinds = _kinds(kinds)
+        self.rows = _ints("rows", rows, "a (start, stop) pair of ints", 2)
+        polygons = _ints("polygons", polygons, "an iterable of polygon indices (ints)")
+        self.polygons = None if polygons is None else frozenset(polygons)
+        self.region = _ints("region", region, "(x_start, y_start, x_end, y_end), 4 ints", 4)
 
     def wants(self, kind: str, *, polygon: int | None = None, y: int | None = None) -> bool:
         if self.kinds is not None and kind not in self.kinds:
@@ -109,7 +145,12 @@ class Trace(Sequence[Event]):
     """An immutable sequence of events with step indexing, filtering and JSON."""
 
     def __init__(self, events: Iterable[Event] = ()) -> None:
+        if not isinstance(events, Iterable):
+            raise TypeError(f"'events' must be an iterable of Events; got {shown(events)}")
         self._events = tuple(events)
+        for index, event in enumerate(self._events):
+            if not isinstance(event, Event):
+                raise TypeError(f"'events'[{index}] must be an Event; got {shown(event)}")
 
     def __getitem__(self, index):  # type: ignore[override]
         if isinstance(index, slice):
@@ -146,8 +187,11 @@ class Trace(Sequence[Event]):
 
         Returns a (height, width) ndarray of int32, row 0 at the bottom.
         """
-        import numpy as np
-
+        width, height = check_raster_size(width, height)
+        step = _int("'step'", step)
+        if step < 0:
+            raise ValueError(f"'step' must be >= 0 (a count of events); got {step}")
+        check_memory(4 * width * height, f"a {width}x{height} step image")
         image = np.zeros((height, width), dtype=np.int32)
         for event in self._events[:step]:
             if event.kind == "span" and 0 <= event.y < height:
@@ -161,6 +205,10 @@ class Trace(Sequence[Event]):
 
     @classmethod
     def from_json(cls, text: str) -> Trace:
+        """Read a trace from JSON text; malformed text raises a ValueError naming the JSON path.
+
+        See `scanviz.trace.codec.trace_from_json` and docs/trace-format.md.
+        """
         from .codec import trace_from_json
 
         return trace_from_json(text)

@@ -1,21 +1,25 @@
 """Traces of scan conversion: filtering, recording, step images and the JSON form."""
 
 import json
+import math
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanviz import Recorder, Trace, scan_convert
+from scanviz import Recorder, Trace, render, scan_convert
 from scanviz.catalog import SHAPES, get
 from scanviz.conventions import SAMPLE_MODES
-from scanviz.trace import AetSorted, EdgeTableBuilt, Span
+from scanviz.limits import file_limit, memory_limit
+from scanviz.trace import AetEntry, AetSorted, DepthTest, EdgeTableBuilt, Span, TriangleSetup
 
 BASE = settings.default.max_examples
 SCAN_KINDS = ("edge_table_built", "edges_activated", "edges_retired", "aet_sorted", "span")
 UMBC = get("umbc_example")
+DOCS = Path(__file__).parents[2] / "docs" / "trace-format.md"
 
 
 def umbc(recorder=True, **options):
@@ -154,6 +158,25 @@ def test_image_at_grows_row_by_row(trace):
     assert not trace.image_at(last_row_5, 16, 16)[6:].any()
 
 
+@pytest.mark.parametrize(
+    ("args", "error", "message"),
+    [
+        (
+            (3, 65536, 65536),
+            ValueError,
+            r"a 65536x65536 step image needs about 16\.0 GiB, over the memory limit",
+        ),
+        ((3, -1, 4), ValueError, r"'width' must be in 0\.\.65536; got -1"),
+        ((3, 4, 2.0), TypeError, r"'height' must be an int; got 2\.0"),
+        (("3", 4, 4), TypeError, r"'step' must be an int; got '3'"),
+        ((-1, 4, 4), ValueError, r"'step' must be >= 0"),
+    ],
+)
+def test_image_at_checks_its_arguments(trace, args, error, message):
+    with pytest.raises(error, match=message):
+        trace.image_at(*args)
+
+
 # --- JSON ---------------------------------------------------------------------------------
 
 
@@ -228,3 +251,260 @@ def test_json_keeps_every_float_bit():
 def test_bad_json_raises_a_clear_error(text, message):
     with pytest.raises(ValueError, match=message):
         Trace.from_json(text)
+
+
+# --- issue 8: hostile JSON and wrongly typed events ---------------------------------------
+
+SPAN = {"kind": "span", "polygon": 0, "y": 1, "x_start": 2, "x_end": 5, "winding": 1}
+AET = {
+    "kind": "aet_sorted",
+    "polygon": 0,
+    "y": 1,
+    "entries": [
+        {
+            "edge": 0,
+            "x": 1.5,
+            "x_exact": "3/2",
+            "dxdy": 0.5,
+            "dxdy_exact": "1/2",
+            "ymax": 4.0,
+            "winding": 1,
+        }
+    ],
+    "swaps": 0,
+}
+
+
+def events_json(*events: dict) -> str:
+    return json.dumps({"events": list(events)})
+
+
+def strict_loads(text: str) -> object:
+    """json.loads refusing the non-standard literals NaN, Infinity and -Infinity."""
+
+    def refuse(literal: str) -> None:
+        raise ValueError(f"non-standard JSON literal {literal}")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def json_depth(value: object) -> int:
+    """Nesting levels of arrays and objects in a parsed JSON value (the oracle for the bound)."""
+    if isinstance(value, dict):
+        return 1 + max(map(json_depth, value.values()), default=0)
+    if isinstance(value, list):
+        return 1 + max(map(json_depth, value), default=0)
+    return 0
+
+
+@pytest.mark.parametrize(
+    ("text", "path"),
+    [
+        ("[" * 5000 + "]" * 5000, r"\[0\]\[0\]\[0\]\[0\]\[0\]\[0\]\[0\]"),
+        ('{"events": [' + "[" * 100_000, r"events\[0\]\[0\]\[0\]\[0\]\[0\]\[0\]"),
+        ('{"events": [' + '{"a": ' * 3000 + "1" + "}" * 3000 + "]}", r"events\[0\]\.a\.a\.a\.a\.a"),
+        (events_json({**SPAN, "y": [[[[[[1]]]]]]}), r"events\[0\]\.y\[0\]\[0\]\[0\]\[0\]"),
+    ],
+)
+def test_issue8_d6_deep_json_is_refused_with_its_path(text, path):
+    with pytest.raises(ValueError, match=rf"at {path}: nests deeper than 7 levels"):
+        Trace.from_json(text)
+
+
+def test_issue8_d6_the_depth_bound_is_what_the_deepest_events_need():
+    from scanviz.scene.builtin import builtin_scene
+    from scanviz.trace.codec import MAX_DEPTH
+
+    kinds = ["pixel_packed", "mask_buffer_row"]
+    scene = builtin_scene("transparent_cube")
+    trace = render(scene, 8, 8, visibility="abuffer", trace=Recorder(kinds)).trace
+    assert {e.kind for e in trace} == set(kinds)
+    text = trace.to_json()
+    assert json_depth(json.loads(text)) == MAX_DEPTH == 7
+    assert Trace.from_json(text) == trace
+    assert "**Nesting depth: 7 levels**" in DOCS.read_text()
+
+
+def test_issue8_d6_json_text_size_is_bounded():
+    text = events_json(*[SPAN] * 40)  # about 3 KiB
+    assert len(Trace.from_json(text)) == 40
+    with (
+        file_limit("1K"),
+        pytest.raises(ValueError, match=r"larger than the file limit of 1\.0 KiB"),
+    ):
+        Trace.from_json(text)
+    with (
+        memory_limit("64K"),
+        pytest.raises(ValueError, match=r"over the memory limit of 64\.0 KiB"),
+    ):
+        Trace.from_json(text)
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ('{"events": [1]}', r"at events\[0\]: must be an event object with a 'kind'; got 1"),
+        ('{"events": [{"kind": "span"}]}', r"at events\[0\]: is missing field 'polygon' of Span"),
+        (events_json({**SPAN, "kind": ["span"]}), r"at events\[0\]\.kind: must be a str naming"),
+        (
+            events_json({**SPAN, "kind": "spam"}),
+            r"events\[0\]\.kind: .*unknown event kind 'spam' \(did you mean 'span'\?\)",
+        ),
+        (events_json(SPAN, {**SPAN, "z": 1}), r"at events\[1\]\.z: is not a field of Span"),
+        (events_json({**SPAN, "y": 1.0}), r"at events\[0\]\.y: must be int; got 1\.0 \(float\)"),
+        (events_json({**SPAN, "y": True}), r"at events\[0\]\.y: must be int; got True \(bool\)"),
+        (events_json({**SPAN, "y": "1"}), r"at events\[0\]\.y: must be int; got '1' \(str\)"),
+        (events_json({**SPAN, "y": None}), r"at events\[0\]\.y: must be int; got None"),
+        (
+            events_json(AET).replace('"3/2"', '"1/0"'),
+            r"at events\[0\]\.entries\[0\]\.x_exact: .*zero denominator",
+        ),
+        (
+            events_json(AET).replace('"3/2"', '"1.5"'),
+            r"at events\[0\]\.entries\[0\]\.x_exact: must be a Fraction",
+        ),
+        (
+            events_json(AET).replace('"3/2"', "1.5"),
+            r"at events\[0\]\.entries\[0\]\.x_exact: must be a Fraction",
+        ),
+        (
+            events_json(AET).replace('"3/2"', '"1e999999999/1"'),
+            r"entries\[0\]\.x_exact: must be a Fraction",
+        ),
+        (
+            events_json(AET).replace("1.5", "1e400"),
+            r"at events\[0\]\.entries\[0\]\.x: must be within the float64 range",
+        ),
+        (
+            events_json(AET).replace("1.5", str(2**1024)),
+            r"at events\[0\]\.entries\[0\]\.x: must be a float within",
+        ),
+        (
+            events_json(AET).replace("1.5", "9" * 5000),
+            r"at events\[0\]\.entries\[0\]\.x: is a number of more than 4300 digits",
+        ),
+        (
+            events_json(AET).replace("1.5", '"NaN"'),
+            r"at events\[0\]\.entries\[0\]\.x: must be a float",
+        ),
+        (events_json({**AET, "entries": {}}), r"at events\[0\]\.entries: must be a list"),
+        (
+            events_json({**AET, "entries": [SPAN]}),
+            r"at events\[0\]\.entries\[0\]\.kind: is not a field of AetEntry",
+        ),
+        (
+            events_json(
+                {
+                    "kind": "face_culled",
+                    "polygon": 0,
+                    "normal": [0, 0],
+                    "view": [0, 0, 1],
+                    "dot": 0,
+                    "culled": False,
+                }
+            ),
+            r"at events\[0\]\.normal: must have 3 items; got 2",
+        ),
+        ('{"events": [], "meta": 1}', r"unknown top-level keys \['meta'\]"),
+        ('{"events": [', r"not valid JSON: Expecting value: line 1 column 13"),
+        ('\\"' * 20_000, r"not valid JSON"),  # escaped quotes: the string scan stays linear
+    ],
+)
+def test_issue8_d10_malformed_json_names_the_path_and_the_rule(text, message):
+    with pytest.raises(ValueError, match=message):
+        Trace.from_json(text)
+
+
+@pytest.mark.parametrize("text", [5, b'{"events": []}', None])
+def test_issue8_d10_json_text_must_be_a_str(text):
+    with pytest.raises(TypeError, match=r"'text' must be a str of trace JSON"):
+        Trace.from_json(text)
+
+
+def test_issue8_d10_events_check_their_field_types():
+    with pytest.raises(TypeError, match=r"^Span field 'polygon' must be int; got 'x' \(str\)$"):
+        Span(polygon="x", y=[1], x_start=0, x_end=1, winding=1)
+    with pytest.raises(TypeError, match=r"^Span field 'y' must be int; got \[1\] \(list\)$"):
+        Span(polygon=0, y=[1], x_start=0, x_end=1, winding=1)
+    with pytest.raises(TypeError, match=r"Span field 'winding' must be int; got True"):
+        Span(polygon=0, y=0, x_start=0, x_end=1, winding=True)
+    with pytest.raises(
+        TypeError, match=r"Span field 'x_end' must be int; got np\.int64\(1\)|got 1 \(int64\)"
+    ):
+        Span(polygon=0, y=0, x_start=0, x_end=np.int64(1), winding=1)
+    with pytest.raises(
+        TypeError, match=r"TriangleSetup field 'vertices'\[1\]\[0\] must be a float"
+    ):
+        TriangleSetup(0, ((0.0, 1.0), ("a", 2.0)), ((0, 0),), 256, (), 0, 1, (0, 0, 1, 1))
+    with pytest.raises(TypeError, match=r"TriangleSetup field 'bbox' must have 4 items; got 3"):
+        TriangleSetup(0, ((0.0, 1.0),), ((0, 0),), 256, (), 0, 1, (0, 0, 1))
+    with pytest.raises(TypeError, match=r"AetSorted field 'entries'\[0\] must be AetEntry"):
+        AetSorted(0, 1, (Span(0, 1, 2, 3, 1),), 0)
+    with pytest.raises(
+        TypeError, match=r"AetEntry field 'x_exact' must be a Fraction .* or None; got 1\.5"
+    ):
+        AetEntry(0, 1.5, 1.5, 0.0, None, 2.0, 1)
+    with pytest.raises(TypeError, match=r"DepthTest field 'z' must be a float within"):
+        DepthTest(0, 1, 2, 10**400, None, True)
+    # An int stands for a float (equal by value); None where the annotation allows it.
+    assert DepthTest(0, 1, 2, 3, None, True) == DepthTest(0, 1, 2, 3.0, None, True)
+    with pytest.raises(TypeError, match=r"'events'\[1\] must be an Event; got 1"):
+        Trace([Span(0, 1, 2, 3, 1), 1])
+
+
+def test_issue8_d10_non_finite_floats_are_written_as_strict_json():
+    events = [
+        DepthTest(0, 1, 2, math.inf, -math.inf, True),
+        DepthTest(0, 1, 3, math.nan, None, False),
+        DepthTest(0, 1, 4, -0.0, 5e-324, False),
+    ]
+    text = Trace(events).to_json()
+    data = strict_loads(text)["events"]  # no Infinity / NaN literals
+    assert [(e["z"], e["stored"]) for e in data] == [("inf", "-inf"), ("nan", None), (-0.0, 5e-324)]
+    back = Trace.from_json(text)
+    assert back[0] == events[0] and back[2] == events[2]
+    assert math.copysign(1, back[2].z) == -1 and math.isnan(back[1].z)
+    assert Trace.from_json(json.dumps({"events": [SPAN]}, allow_nan=True)) == Trace(
+        [Span(0, 1, 2, 5, 1)]
+    )
+    legacy = json.dumps(
+        {"events": [{**json.loads(text)["events"][0], "z": math.inf}]}
+    )  # "Infinity"
+    assert "Infinity" in legacy and Trace.from_json(legacy)[0] == events[0]
+
+
+@pytest.mark.parametrize(
+    ("filters", "error", "message"),
+    [
+        (
+            {"kinds": 5},
+            TypeError,
+            r"'kinds' must be an event kind \(str\) or an iterable of them; got 5",
+        ),
+        ({"kinds": [3]}, TypeError, r"'kinds'\[0\] must be a str; got 3"),
+        (
+            {"kinds": ["spam", "aet_srted"]},
+            ValueError,
+            r"did you mean 'aet_sorted' for 'aet_srted', 'span' for 'spam'\?",
+        ),
+        (
+            {"polygons": "ab"},
+            TypeError,
+            r"'polygons' must be an iterable of polygon indices \(ints\); got 'ab'",
+        ),
+        ({"polygons": [0, 1.5]}, TypeError, r"'polygons'\[1\] must be an int; got 1\.5"),
+        ({"rows": (0, 2.5)}, TypeError, r"'rows'\[1\] must be an int; got 2\.5"),
+        ({"rows": 5}, TypeError, r"'rows' must be a \(start, stop\) pair of ints; got 5"),
+        ({"region": (0, 0, "4", 4)}, TypeError, r"'region'\[2\] must be an int; got '4'"),
+    ],
+)
+def test_issue8_d10_recorder_arguments_are_checked(filters, error, message):
+    with pytest.raises(error, match=message):
+        Recorder(**filters)
+    with pytest.raises(error, match=message):
+        Trace().filter(**filters)
+
+
+def test_issue8_d10_recorder_accepts_integer_like_filters():
+    recorder = Recorder(kinds="span", polygons=np.array([0]), rows=(np.int64(2), 4))
+    assert recorder.polygons == {0} and recorder.rows == (2, 4) and recorder.kinds == {"span"}
