@@ -15,12 +15,15 @@
   round half to even as ``numpy.rint``); every inside/outside decision is made
   with exact integer arithmetic on the snapped values. ``subpixel_bits=None``
   keeps the float64 values and decides them exactly too.
-* Coordinates must lie within +-COORD_LIMIT pixels.
+* Coordinates are real numbers (int or float; not bool, str or complex), finite,
+  within +-COORD_LIMIT pixels (`scanviz.geometry.as_coordinates` checks them).
 """
 
 from __future__ import annotations
 
 import numbers
+
+import numpy as np
 
 SAMPLE_MODES = ("corner", "center")
 RULES = ("nonzero", "evenodd")
@@ -29,6 +32,20 @@ DEFAULT_SUBPIXEL_BITS = 8
 MAX_SUBPIXEL_BITS = 16
 COORD_LIMIT = 2**20
 MAX_RASTER_SIZE = 2**16
+
+
+def short_repr(value: object) -> str:
+    """`value` for an error message: huge ints by their size (their digits may not even print).
+
+    >>> short_repr(10**400), short_repr(-3), short_repr("x" * 80)[-6:]
+    ('<an int of 1329 bits>', '-3', 'xxx...')
+    """
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 2**64:
+        return f"{'-' if value < 0 else ''}<an int of {value.bit_length()} bits>"
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def sample_offset(sample: str) -> float:
@@ -43,7 +60,9 @@ def sample_offset(sample: str) -> float:
 def check_choice(name: str, value: object, choices: tuple[str, ...]) -> str:
     """Return `value` if it is one of `choices`, else raise a ValueError naming `name`."""
     if not isinstance(value, str) or value not in choices:
-        raise ValueError(f"{name!r} must be one of {', '.join(map(repr, choices))}; got {value!r}")
+        raise ValueError(
+            f"{name!r} must be one of {', '.join(map(repr, choices))}; got {short_repr(value)}"
+        )
     return value
 
 
@@ -52,19 +71,29 @@ def check_subpixel_bits(subpixel_bits: object) -> int | None:
     if subpixel_bits is None:
         return None
     if isinstance(subpixel_bits, bool) or not isinstance(subpixel_bits, numbers.Integral):
-        raise TypeError(f"'subpixel_bits' must be an int or None; got {subpixel_bits!r}")
+        raise TypeError(f"'subpixel_bits' must be an int or None; got {short_repr(subpixel_bits)}")
     if not 0 <= subpixel_bits <= MAX_SUBPIXEL_BITS:
         raise ValueError(
-            f"'subpixel_bits' must be in 0..{MAX_SUBPIXEL_BITS} or None; got {subpixel_bits}"
+            f"'subpixel_bits' must be in 0..{MAX_SUBPIXEL_BITS} or None; "
+            f"got {short_repr(subpixel_bits)}"
         )
     return int(subpixel_bits)
+
+
+def check_index(name: str, value: object) -> int:
+    """Validate an index recorded in trace events: an int >= 0 (not a bool)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name!r} must be an int >= 0; got {short_repr(value)}")
+    if value < 0:
+        raise ValueError(f"{name!r} must be an int >= 0; got {short_repr(value)}")
+    return int(value)
 
 
 def check_raster_size(width: object, height: object) -> tuple[int, int]:
     """Validate a raster size: ints in 0..MAX_RASTER_SIZE (zero gives an empty raster)."""
     for name, value in (("width", width), ("height", height)):
         if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-            raise TypeError(f"{name!r} must be an int; got {value!r}")
+            raise TypeError(f"{name!r} must be an int; got {short_repr(value)}")
         if not 0 <= value <= MAX_RASTER_SIZE:
-            raise ValueError(f"{name!r} must be in 0..{MAX_RASTER_SIZE}; got {value}")
+            raise ValueError(f"{name!r} must be in 0..{MAX_RASTER_SIZE}; got {short_repr(value)}")
     return int(width), int(height)

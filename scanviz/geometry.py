@@ -3,33 +3,213 @@
 A `Polygon` holds read-only float64 contours. Holes and self-intersecting
 contours are allowed; which points are inside is decided later by a fill rule
 (nonzero winding or even-odd).
+
+`as_coordinates` is the one gate every raster entry point sends its
+coordinates through (DESIGN §6): each coordinate must be a real number (a
+Python or numpy int or float, or another `numbers.Real`; not a bool, str,
+complex or other object), finite, and within +-2**20 pixels; a ragged input
+is reported at the item whose length is wrong.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import math
+import numbers
+from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from .conventions import COORD_LIMIT
+from .conventions import COORD_LIMIT, short_repr
+
+LIMIT_TEXT = f"+-2**20 = {COORD_LIMIT} pixels"
+_NOT_FINITE, _BEYOND, _NOT_REAL = 1, 2, 3
+_NUMERIC_KINDS = "iuf"  # integer, unsigned, float dtypes; bool, complex, str, object are not
+
+
+def nested_array(value: object) -> np.ndarray | None:
+    """`value` as an ndarray, Python objects kept as they are (so bools stay bools).
+
+    An ndarray is returned as it is; anything else becomes an object array.
+    None when the nesting is too ragged for numpy to hold.
+    """
+    if isinstance(value, np.ndarray):
+        return value
+    try:
+        return np.array(value, dtype=object)
+    except ValueError:
+        return None
+
+
+def _is_sequence(value: object) -> bool:
+    if isinstance(value, np.ndarray):
+        return value.ndim > 0
+    return isinstance(value, Sequence) and not isinstance(value, (str, bytes))
+
+
+def _shape_text(shape: tuple[int | str, ...]) -> str:
+    text = f"({', '.join(map(str, shape))})"
+    return f"{'an' if shape[0] == 'N' else 'a'} {text} array"
+
+
+def _label(name: str, index: tuple[int, ...]) -> str:
+    """How messages name an item: the vertex of a contour, of a triangle, ..."""
+    if not index:
+        return name
+    return name + "".join(f"[{i}]" for i in index[:-1]) + f" vertex {index[-1]}"
+
+
+def _misfit(value: object, shape: tuple[int | str, ...], index: tuple[int, ...] = ()):
+    """(index, problem) of the first item of nested `value` that does not fit `shape`, or None."""
+    if not shape:
+        return (
+            (index[:-1], "holds a sequence where a number belongs") if _is_sequence(value) else None
+        )
+    if not _is_sequence(value):
+        return index, "is not a sequence"
+    if isinstance(shape[0], int) and len(value) != shape[0]:
+        what = "coordinates; a vertex is (x, y)" if len(shape) == 1 else f"items; want {shape[0]}"
+        return index, f"has {len(value)} {what}"
+    for i, item in enumerate(value):
+        found = _misfit(item, shape[1:], (*index, i))
+        if found:
+            return found
+    return None
+
+
+def _check_shape(raw, value, name: str, shape: tuple[int | str, ...]) -> np.ndarray:
+    """`raw` if it has `shape` (a str is a free length); else a ValueError naming the misfit."""
+    if raw is not None and raw.shape == (0,) and isinstance(shape[0], str):
+        return raw.reshape(0, *(0 if isinstance(n, str) else n for n in shape[1:]))
+    fits = raw is not None and raw.ndim == len(shape)
+    if fits and all(isinstance(n, str) or n == m for n, m in zip(shape, raw.shape, strict=True)):
+        return raw
+    ragged = raw is None or (raw.dtype == object and any(map(_is_sequence, raw.flat)))
+    found = _misfit(value, shape) if ragged else None
+    if found:
+        index, problem = found
+        label = _label(name, index) if len(index) == len(shape) - 1 else _item_label(name, index)
+        raise ValueError(f"{name} must be {_shape_text(shape)}; {label} {problem}")
+    raise ValueError(f"{name} must be {_shape_text(shape)}; got shape {raw.shape}")
+
+
+def _item_label(name: str, index: tuple[int, ...]) -> str:
+    return name + "".join(f"[{i}]" for i in index) if index else name
+
+
+def _fault(value: object) -> int:
+    """0 for a valid coordinate, else why not: _NOT_REAL, _NOT_FINITE or _BEYOND."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        return _NOT_REAL
+    if isinstance(value, numbers.Integral):
+        return 0 if -COORD_LIMIT <= value <= COORD_LIMIT else _BEYOND  # exact, any size
+    if math.isnan(value) or math.isinf(value):
+        return _NOT_FINITE
+    return 0 if -COORD_LIMIT <= value <= COORD_LIMIT else _BEYOND
+
+
+def _faults(raw: np.ndarray) -> np.ndarray:
+    """Per-coordinate `_fault` codes of `raw` (vectorized for numeric dtypes)."""
+    if raw.dtype.kind == "f":
+        finite = np.isfinite(raw)
+        beyond = np.abs(np.where(finite, raw, 0)) > COORD_LIMIT
+        return np.where(~finite, _NOT_FINITE, np.where(beyond, _BEYOND, 0))
+    if raw.dtype.kind in "iu":  # compared as integers: no abs() overflow at -2**63
+        return np.where((raw < -COORD_LIMIT) | (raw > COORD_LIMIT), _BEYOND, 0)
+    if raw.dtype == object:
+        codes = np.fromiter(map(_fault, raw.flat), dtype=np.int8, count=raw.size)
+        return codes.reshape(raw.shape)
+    return np.full(raw.shape, _NOT_REAL)
+
+
+def as_coordinates(value: object, name: str, shape: tuple[int | str, ...]) -> np.ndarray:
+    """`value` as a new float64 array of `shape` whose every coordinate is valid (DESIGN §6).
+
+    Parameters
+    ----------
+    value : array_like
+        Nested sequences or an array; its last axis holds (x, y).
+    name : str
+        How messages name `value`: ``"contour 0"``, ``"'triangles'"``.
+    shape : tuple of int or str
+        The shape wanted, a str for a free length: ``("N", 2)``, ``("T", 3, 2)``.
+        An empty sequence is taken as zero items when the first length is free.
+
+    Returns
+    -------
+    ndarray of float64
+        A writable copy.
+
+    Raises
+    ------
+    TypeError
+        If a coordinate is not a real number (bool, str, complex, None, an
+        object, or an array of such a dtype); the message names the vertex.
+    ValueError
+        If `value` does not have `shape` (a ragged input names the first item
+        of the wrong length), or a coordinate is not finite or lies beyond
+        +-2**20 pixels (any Python int is compared exactly).
+
+    Examples
+    --------
+    >>> as_coordinates([(0, 1), (2.5, 3)], "'points'", ("N", 2)).tolist()
+    [[0.0, 1.0], [2.5, 3.0]]
+    >>> as_coordinates([(0, 0), (1, 0, 5)], "contour 0", ("N", 2))
+    Traceback (most recent call last):
+    ...
+    ValueError: contour 0 must be an (N, 2) array; contour 0 vertex 1 has 3 coordinates; a vertex is (x, y)
+    >>> as_coordinates([(0, 0), (10**400, 0)], "contour 0", ("N", 2))
+    Traceback (most recent call last):
+    ...
+    ValueError: contour 0 vertex 1 = [<an int of 1329 bits>, 0] is beyond the coordinate limit of +-2**20 = 1048576 pixels
+    """
+    raw = _check_shape(nested_array(value), value, name, shape)
+    if raw.dtype.kind not in _NUMERIC_KINDS + "O":
+        raise TypeError(
+            f"{name} must be {_shape_text(shape)} of numbers (real: int or float); "
+            f"got dtype {raw.dtype}"
+        )
+    codes = _faults(raw)
+    bad = np.flatnonzero(codes)
+    if bad.size:
+        *vertex, _ = index = np.unravel_index(bad[0], raw.shape)
+        vertex = tuple(int(i) for i in vertex)
+        label, shown = _label(name, vertex), ", ".join(map(short_repr, raw[vertex].tolist()))
+        code = codes[index]
+        if code == _NOT_REAL:
+            culprit = raw[index]
+            raise TypeError(
+                f"{name} must be {_shape_text(shape)} of numbers (real: int or float; not bool, "
+                f"str, complex or None): {label} holds {short_repr(culprit)} of type "
+                f"{type(culprit).__name__}"
+            )
+        if code == _NOT_FINITE:
+            raise ValueError(f"{label} is not finite: [{shown}]")
+        raise ValueError(f"{label} = [{shown}] is beyond the coordinate limit of {LIMIT_TEXT}")
+    return raw.astype(np.float64)
+
+
+def _contour_parts(contours: object) -> list:
+    """The contours of `contours`: one (N, 2) contour, or a sequence of them."""
+    if isinstance(contours, np.ndarray):
+        if contours.ndim == 2:
+            return [contours]
+        if contours.ndim == 3:
+            return list(contours)
+        raise ValueError(
+            f"'contours' must be an (N, 2) array or a list of them; got shape {contours.shape}"
+        )
+    if isinstance(contours, (str, bytes)) or not isinstance(contours, Iterable):
+        raise TypeError(
+            f"'contours' must be an (N, 2) array or a list of them; got {contours!r:.60}"
+        )
+    parts = list(contours)
+    # A vertex (a sequence of numbers) first means one contour; a sequence of sequences, several.
+    is_vertex = parts and not (_is_sequence(parts[0]) and any(map(_is_sequence, parts[0])))
+    return [parts] if is_vertex else parts
 
 
 def _as_contour(points: object, index: int) -> np.ndarray:
-    try:
-        array = np.array(points, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise TypeError(f"contour {index} must be an (N, 2) array of numbers: {error}") from None
-    if array.ndim != 2 or array.shape[1] != 2:
-        raise ValueError(f"contour {index} must be an (N, 2) array; got shape {array.shape}")
-    bad = np.flatnonzero(~np.isfinite(array).all(axis=1))
-    if bad.size:
-        raise ValueError(f"contour {index} vertex {bad[0]} is not finite: {array[bad[0]].tolist()}")
-    far = np.flatnonzero((np.abs(array) > COORD_LIMIT).any(axis=1))
-    if far.size:
-        raise ValueError(
-            f"contour {index} vertex {far[0]} = {array[far[0]].tolist()} is beyond the "
-            f"coordinate limit of +-{COORD_LIMIT} pixels"
-        )
+    array = as_coordinates(points, f"contour {index}", ("N", 2))
     distinct = len(np.unique(array, axis=0))
     if distinct < 3:
         raise ValueError(
@@ -52,8 +232,13 @@ class Polygon:
     Raises
     ------
     ValueError
-        If a contour has the wrong shape, a non-finite coordinate, a
-        coordinate beyond the limit, or fewer than 3 distinct vertices.
+        If a contour has the wrong shape (a ragged one names the vertex of the
+        wrong length), a non-finite coordinate, a coordinate beyond +-2**20
+        (Python ints of any size are compared exactly), or fewer than 3
+        distinct vertices.
+    TypeError
+        If a coordinate is not a real number: bools, strings, complex numbers
+        and other objects are refused, never converted.
 
     Examples
     --------
@@ -73,18 +258,7 @@ class Polygon:
         if isinstance(contours, Polygon):
             self._contours = contours._contours
             return
-        try:
-            array = np.asarray(contours, dtype=np.float64)
-        except (TypeError, ValueError):
-            array = None  # ragged: a list of contours of different lengths
-        if array is not None and array.ndim == 2:
-            parts = [contours]
-        elif array is not None and array.ndim not in (1, 3):
-            raise ValueError(
-                f"'contours' must be an (N, 2) array or a list of them; got shape {array.shape}"
-            )
-        else:
-            parts = list(contours)  # type: ignore[call-overload]
+        parts = _contour_parts(contours)
         if not parts:
             raise ValueError("'contours' must hold at least one contour")
         self._contours = tuple(_as_contour(part, i) for i, part in enumerate(parts))

@@ -90,3 +90,45 @@ def test_bad_shapes_raise_value_error_naming_the_rule(contours, message):
 def test_non_numbers_raise_type_error():
     with pytest.raises(TypeError, match=r"contour 0 must be an \(N, 2\) array of numbers"):
         Polygon([[("a", "b"), (1, 0), (0, 1)]])
+
+
+@pytest.mark.parametrize("huge", [10**400, 2**1024, -(2**1024), 2**20 + 1])
+def test_issue8_d8_huge_python_ints_name_the_vertex_and_the_limit(huge):
+    with pytest.raises(ValueError, match=r"contour 0 vertex 1 = .* limit of \+-2\*\*20"):
+        Polygon([(0, 0), (huge, 0), (0, 1)])
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [1 + 7j, 1j, "4", "0", True, np.bool_(False), None, b"1", [0], {"x": 1}],
+    ids=lambda v: type(v).__name__,
+)
+def test_issue8_d9_non_real_coordinates_are_refused_naming_the_vertex(bad):
+    with pytest.raises(
+        TypeError, match=r"contour 0 must be an \(N, 2\) array of numbers.*vertex 1"
+    ):
+        Polygon([(0, 0), (bad, 0), (0, 1)])
+
+
+@pytest.mark.parametrize("dtype", [complex, bool, "U3", "datetime64[s]"])
+def test_issue8_d9_arrays_of_non_real_dtype_are_refused(dtype):
+    with pytest.raises(TypeError, match=r"got dtype"):
+        Polygon(np.zeros((3, 2), dtype=dtype))
+
+
+def test_issue8_d9_ragged_contours_name_the_vertex_of_the_wrong_length():
+    with pytest.raises(ValueError, match=r"contour 0 vertex 1 has 3 coordinates"):
+        Polygon([(0, 0), (1, 0, 5), (0, 1)])
+    with pytest.raises(ValueError, match=r"contour 1 vertex 2 has 1 coordinates"):
+        Polygon([TRIANGLE, [(0, 0), (1, 0), (1,), (0, 1)]])
+
+
+def test_issue8_d9_real_numbers_of_any_kind_are_accepted_exactly():
+    from fractions import Fraction
+
+    polygon = Polygon([(np.int8(0), np.uint64(0)), (Fraction(1, 4), np.float32(0.5)), (0, 2**20)])
+    assert polygon.contours[0].tolist() == [[0.0, 0.0], [0.25, 0.5], [0.0, 2.0**20]]
+    objects = np.array([(0, 0), (4, 0), (-0.0, 4)], dtype=object)
+    assert Polygon(objects).contours[0].tolist() == [[0.0, 0.0], [4.0, 0.0], [-0.0, 4.0]]
+    with pytest.raises(ValueError, match="beyond"):
+        Polygon(np.array([(0, 0), (1, 0), (np.iinfo(np.int64).min, 1)]))

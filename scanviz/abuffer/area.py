@@ -9,8 +9,11 @@ Vertices are snapped as the scan converter snaps them (``rint(v * 2**bits) /
 Algorithm (one compiled pass, bottom row to top):
 
 1. Per pixel row, split the row into horizontal strips at every vertex y and
-   every y where two active edges cross. Inside a strip the edges are
-   non-crossing segments, so their left-to-right order is fixed.
+   every y where two active edges cross, one strip at a time from the bottom:
+   the next crossing above a height is between two edges adjacent in x order
+   there (Bentley-Ottmann), so memory stays linear in the edges. Inside a
+   strip the edges are non-crossing segments, so their left-to-right order
+   is fixed.
 2. Sort the strip's edges by x at mid-height and walk them with a winding
    count; an edge where "inside" (nonzero or odd winding) switches on or off
    is a left or right boundary of an inside trapezoid.
@@ -28,11 +31,17 @@ the coordinate magnitude (about 1e-13 for a 256-pixel raster).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
 from ..conventions import RULES, check_choice, check_raster_size, check_subpixel_bits
 from ..geometry import Polygon
+from ..limits import check_memory
+
+EDGE_BYTES = 12 * 8  # per edge: its arrays, the active list and the per-strip x values
+MAX_WORK = 2**26  # edge visits (strips x edges of a row) before a polygon is refused
 
 
 def snapped_vertices(polygon: Polygon, subpixel_bits: int | None) -> np.ndarray:
@@ -95,47 +104,104 @@ def _add_edge(row, counts, xa, xb, h, sign, width):
 
 
 @njit(cache=True)
-def _row_breaks(ax, ay, bx, by, active, n_active, y, breaks):
-    """Strip boundaries of row y into `breaks`: the row's bounds, vertex heights, edge crossings."""
-    top = y + 1.0
-    n_breaks = 2
-    breaks[0], breaks[1] = y, top
-    for k in range(n_active):
-        e = active[k]
-        for v in (ay[e], by[e]):
-            if y < v < top:
-                breaks[n_breaks] = v
-                n_breaks += 1
-        for m in range(k):
-            f = active[m]
-            lo = max(max(ay[e], ay[f]), float(y))
-            hi = min(min(by[e], by[f]), top)
-            if hi <= lo:
-                continue
-            d_lo = _x_at(ax[e], ay[e], bx[e], by[e], lo) - _x_at(ax[f], ay[f], bx[f], by[f], lo)
-            d_hi = _x_at(ax[e], ay[e], bx[e], by[e], hi) - _x_at(ax[f], ay[f], bx[f], by[f], hi)
-            if d_lo * d_hi < 0.0:  # they cross strictly inside [lo, hi]
-                breaks[n_breaks] = lo + (hi - lo) * (d_lo / (d_lo - d_hi))
-                n_breaks += 1
-    return n_breaks
+def _crossing(ax, ay, bx, by, e, f, y):
+    """Where edges e and f cross strictly inside row [y, y + 1], else +inf.
+
+    Found from the pair's ends within the row alone, so the same pair gives
+    the same height whichever strip asks.
+    """
+    lo = max(max(ay[e], ay[f]), y)
+    hi = min(min(by[e], by[f]), y + 1.0)
+    if hi <= lo:
+        return np.inf
+    d_lo = _x_at(ax[e], ay[e], bx[e], by[e], lo) - _x_at(ax[f], ay[f], bx[f], by[f], lo)
+    d_hi = _x_at(ax[e], ay[e], bx[e], by[e], hi) - _x_at(ax[f], ay[f], bx[f], by[f], hi)
+    if d_lo * d_hi < 0.0:
+        return lo + (hi - lo) * (d_lo / (d_lo - d_hi))
+    return np.inf
 
 
 @njit(cache=True)
-def _coverage_kernel(ax, ay, bx, by, winding, width, height, evenodd):
-    """Exact coverage of rows [row0, row0 + rows): returns (row0, (rows, width) float64)."""
+def _strip_top(ax, ay, bx, by, present, n, s, t, y, x_lo, x_hi):
+    """The first height in (s, t] where two of the n `present` edges cross, else t.
+
+    Sorted by x just above s (x at s, ties by x at t), the first pair to cross
+    is adjacent in that order (Bentley-Ottmann): a pair whose order at t is
+    reversed crosses, and the earliest such crossing ends the strip.
+    """
+    for i in range(n):
+        e = present[i]
+        x_lo[i] = _x_at(ax[e], ay[e], bx[e], by[e], s)
+        x_hi[i] = _x_at(ax[e], ay[e], bx[e], by[e], t)
+    by_top = np.argsort(x_hi[:n], kind="mergesort")
+    order = by_top[np.argsort(x_lo[:n][by_top], kind="mergesort")]
+    # A pair reversed at t that crosses at s (rounding may leave it unswapped there) is swapped.
+    for j in range(1, n):
+        k = j
+        while k > 0 and x_hi[order[k]] < x_hi[order[k - 1]]:
+            if s < _crossing(ax, ay, bx, by, present[order[k - 1]], present[order[k]], y):
+                break
+            order[k - 1], order[k] = order[k], order[k - 1]
+            k -= 1
+    top = t
+    for j in range(n - 1):
+        left, right = order[j], order[j + 1]
+        if x_hi[right] < x_hi[left]:
+            crossing = _crossing(ax, ay, bx, by, present[left], present[right], y)
+            if s < crossing < top:
+                top = crossing
+    return top
+
+
+@njit(cache=True)
+def _add_strip(row, counts, ax, ay, bx, by, winding, present, n, y_lo, y_hi, mids, width, evenodd):
+    """Add the inside trapezoids of strip [y_lo, y_hi], bounded by the n `present` edges, to `row`."""
+    h = y_hi - y_lo
+    y_mid = 0.5 * (y_lo + y_hi)
+    for i in range(n):
+        e = present[i]
+        mids[i] = _x_at(ax[e], ay[e], bx[e], by[e], y_mid)
+    order = np.argsort(mids[:n], kind="mergesort")  # no crossing inside: one order throughout
+    # Walk left to right with the winding count; add each inside trapezoid's boundaries.
+    wind = 0
+    c_lo, c_hi = width, 0  # the range of `counts` this strip touches
+    for j in range(n):
+        e = present[order[j]]
+        was_inside = (wind % 2 != 0) if evenodd else (wind != 0)
+        wind += winding[e]
+        is_inside = (wind % 2 != 0) if evenodd else (wind != 0)
+        if was_inside == is_inside:
+            continue
+        xa = _x_at(ax[e], ay[e], bx[e], by[e], y_lo)
+        xb = _x_at(ax[e], ay[e], bx[e], by[e], y_hi)
+        first = _add_edge(row, counts, xa, xb, h, -1 if is_inside else 1, width)
+        c_lo, c_hi = min(c_lo, first), max(c_hi, first)
+    # A left boundary (sign -1) makes `counts` +1 from its first column on: the columns
+    # between a left and a right boundary's first columns lie fully inside.
+    covered = 0
+    for c in range(c_lo, c_hi):
+        covered += counts[c]
+        counts[c] = 0
+        if covered != 0:
+            row[c] += covered * h
+    counts[c_hi] = 0
+
+
+@njit(cache=True)
+def _coverage_kernel(ax, ay, bx, by, winding, width, height, evenodd, row0, row1, max_work):
+    """Exact coverage of rows [row0, row1): ((row1 - row0, width) float64 array, work).
+
+    Memory is linear in the edges: strips are found one at a time, bottom to top.
+    Work counts edges visited, strip by strip; past `max_work` the kernel
+    stops and returns the work reached (the caller refuses the polygon).
+    """
+    work = 0
     count = len(ay)
-    if count == 0 or width == 0:
-        return 0, np.zeros((0, width))
-    row0 = max(0, int(np.floor(ay.min())))
-    row1 = min(height, int(np.ceil(by.max())))
-    if row1 <= row0:
-        return 0, np.zeros((0, width))
-    image = np.zeros((row1 - row0, width))
+    image = np.zeros((max(row1 - row0, 0), width))
     counts = np.zeros(width + 1, np.int64)
     active = np.empty(count, np.int64)
-    breaks = np.empty(2 * count + 2, np.float64)
-    strip_edges = np.empty(count, np.int64)
-    mids = np.empty(count, np.float64)
+    present = np.empty(count, np.int64)
+    x_lo, x_hi, mids = np.empty(count), np.empty(count), np.empty(count)
     next_edge = 0
     n_active = 0
     for y in range(row0, row1):
@@ -152,64 +218,63 @@ def _coverage_kernel(ax, ay, bx, by, winding, width, height, evenodd):
                 active[n_active] = next_edge
                 n_active += 1
             next_edge += 1
-        if n_active == 0:
-            continue
-        needed = 2 + 2 * n_active + n_active * (n_active - 1) // 2
-        if needed > len(breaks):
-            breaks = np.empty(needed, np.float64)
-        n_breaks = _row_breaks(ax, ay, bx, by, active, n_active, y, breaks)
-        strips = np.unique(breaks[:n_breaks])
-        row = image[y - row0]
-        for s in range(len(strips) - 1):
-            y_lo, y_hi = strips[s], strips[s + 1]
-            h = y_hi - y_lo
-            # Edges spanning the strip, insertion-sorted by x at mid-height.
-            n_strip = 0
-            y_mid = 0.5 * (y_lo + y_hi)
+        s = float(y)
+        while n_active and s < top:
+            # The edges spanning upward from s, and the next vertex height above s.
+            t, n = top, 0
             for k in range(n_active):
                 e = active[k]
-                if ay[e] < y_hi and by[e] > y_lo:
-                    x_mid = _x_at(ax[e], ay[e], bx[e], by[e], y_mid)
-                    j = n_strip
-                    while j > 0 and mids[j - 1] > x_mid:
-                        mids[j], strip_edges[j] = mids[j - 1], strip_edges[j - 1]
-                        j -= 1
-                    mids[j], strip_edges[j] = x_mid, e
-                    n_strip += 1
-            # Walk left to right with the winding count; add each inside trapezoid's boundaries.
-            wind = 0
-            c_lo, c_hi = width, 0  # the range of `counts` this strip touches
-            for j in range(n_strip):
-                e = strip_edges[j]
-                was_inside = (wind % 2 != 0) if evenodd else (wind != 0)
-                wind += winding[e]
-                is_inside = (wind % 2 != 0) if evenodd else (wind != 0)
-                if was_inside == is_inside:
-                    continue
-                xa = _x_at(ax[e], ay[e], bx[e], by[e], y_lo)
-                xb = _x_at(ax[e], ay[e], bx[e], by[e], y_hi)
-                first = _add_edge(row, counts, xa, xb, h, -1 if is_inside else 1, width)
-                c_lo, c_hi = min(c_lo, first), max(c_hi, first)
-            # A left boundary (sign -1) makes `counts` +1 from its first column on: the columns
-            # between a left and a right boundary's first columns lie fully inside.
-            covered = 0
-            for c in range(c_lo, c_hi):
-                covered += counts[c]
-                counts[c] = 0
-                if covered != 0:
-                    row[c] += covered * h
-            counts[c_hi] = 0
-    return row0, image
+                if ay[e] > s:
+                    t = min(t, ay[e])
+                elif by[e] > s:
+                    present[n] = e
+                    n += 1
+                    t = min(t, by[e])
+            work += n_active + n
+            if work > max_work:
+                return image, work
+            if n:
+                t = _strip_top(ax, ay, bx, by, present, n, s, t, float(y), x_lo, x_hi)
+                row = image[y - row0]
+                _add_strip(
+                    row, counts, ax, ay, bx, by, winding, present, n, s, t, mids, width, evenodd
+                )
+            s = t
+    return image, work
 
 
-def _coverage_rows(polygon, width, height, rule, subpixel_bits):
-    """Validate like `scan_convert`, then run the kernel: (row0, (rows, width) float64 in [0, 1])."""
+def _row_range(ay: np.ndarray, by: np.ndarray, height: int) -> tuple[int, int]:
+    """Rows [row0, row1) of the raster that the edges (lower ends ay, upper by) reach."""
+    if ay.size == 0:
+        return 0, 0
+    row0 = min(max(0, math.floor(ay.min())), height)
+    return row0, max(min(height, math.ceil(by.max())), row0)
+
+
+def _coverage_rows(polygon, width, height, rule, subpixel_bits, what, extra_bytes=0):
+    """Validate like `scan_convert`, then run the kernel: (row0, (rows, width) float64 in [0, 1]).
+
+    The kernel's rows, its working memory and `extra_bytes` (the caller's
+    output) are checked against the memory limit first, as `what`.
+    """
     polygon = Polygon(polygon)
     width, height = check_raster_size(width, height)
     check_choice("rule", rule, RULES)
     bits = check_subpixel_bits(subpixel_bits)
     edges = _edge_arrays(snapped_vertices(polygon, bits), polygon.offsets)
-    row0, rows = _coverage_kernel(*edges, width, height, rule == "evenodd")
+    row0, row1 = _row_range(edges[1], edges[3], height)
+    check_memory(
+        extra_bytes + 8 * (row1 - row0) * width + 8 * width + EDGE_BYTES * len(edges[0]),
+        f"{what}: {row1 - row0} rows of {width} float64 areas",
+    )
+    rows, work = _coverage_kernel(*edges, width, height, rule == "evenodd", row0, row1, MAX_WORK)
+    if work > MAX_WORK:
+        raise ValueError(
+            f"{what}: the polygon's {len(edges[0])} edges cut its rows into too many strips "
+            f"(over {MAX_WORK} edge visits): every vertex height and "
+            "every crossing of two edges inside a pixel row starts a strip that visits all the "
+            "edges of the row; use fewer vertices or edge crossings per pixel row"
+        )
     return row0, np.clip(rows, 0.0, 1.0, out=rows)
 
 
@@ -248,7 +313,7 @@ def pixel_areas(
     >>> ys.tolist(), xs.tolist(), areas.tolist()
     ([0, 0], [0, 1], [0.75, 0.25])
     """
-    row0, rows = _coverage_rows(polygon, width, height, rule, subpixel_bits)
+    row0, rows = _coverage_rows(polygon, width, height, rule, subpixel_bits, "pixel_areas")
     ys, xs = np.nonzero(rows)
     return (ys + row0).astype(np.int64), xs.astype(np.int64), rows[ys, xs]
 
@@ -279,13 +344,30 @@ def area_coverage(
     (height, width) ndarray of float64
         Area of (inside region ∩ [x, x+1) x [y, y+1)) at ``[y, x]``, row 0 at the bottom.
 
+    Raises
+    ------
+    TypeError
+        If a coordinate is not a real number (bool, str, complex, object), or
+        an option has the wrong type.
+    ValueError
+        If `polygon` is malformed (see `Polygon`: shape, non-finite values,
+        coordinates beyond +-2**20, fewer than 3 distinct vertices), or an
+        option is unknown or out of range.
+    scanviz.limits.ResourceLimitError
+        (a ValueError) If the output (8 bytes a pixel), the rows the polygon
+        reaches (8 bytes a pixel again) and the edges' working memory would
+        exceed the memory limit (`scanviz.limits`).
+
     Examples
     --------
     >>> area_coverage([(0, 0), (2, 0), (2, 2)], 2, 2)[::-1]  # top row first
     array([[0. , 0.5],
            [0.5, 1. ]])
     """
-    row0, rows = _coverage_rows(polygon, width, height, rule, subpixel_bits)
+    what = f"area_coverage: a {width}x{height} float64 raster"
+    row0, rows = _coverage_rows(
+        polygon, width, height, rule, subpixel_bits, what, extra_bytes=8 * width * height
+    )
     image = np.zeros((height, width))
     image[row0 : row0 + len(rows)] = rows
     return image

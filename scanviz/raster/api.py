@@ -8,19 +8,26 @@ import numpy as np
 
 from ..conventions import (
     ARITHMETICS,
-    COORD_LIMIT,
     MAX_SUBPIXEL_BITS,
     RULES,
     SAMPLE_MODES,
     check_choice,
     check_raster_size,
     check_subpixel_bits,
+    short_repr,
 )
-from ..geometry import Polygon
+from ..geometry import Polygon, as_coordinates, nested_array
+from ..limits import check_memory, current_memory_limit
 from ..trace import Recorder, Trace, Tracer
 from . import kernels
 from .fixed import SnappedPolygon, exact_bits, snap, snap_units
 from .scanline import ScanStats, scan_reference
+
+COUNT_BYTES = 4  # an int32 coverage count
+SPAN_BYTES = 3 * 8  # a (y, x_start, x_end) row of int64
+# A compiled scan holds its span buffer, the doubled copy while it grows, then the result.
+SPAN_BUFFER_BYTES = 3 * SPAN_BYTES
+VERTEX_BYTES = 20 * 8  # per vertex: snapped units, the edge table, the active edge table
 
 
 @dataclass(frozen=True)
@@ -52,7 +59,9 @@ def as_tracer(trace: object) -> Tracer | None:
     if trace is True:
         return Recorder()
     if not isinstance(trace, Tracer):
-        raise TypeError(f"'trace' must be None, True or a Tracer (wants/emit); got {trace!r}")
+        raise TypeError(
+            f"'trace' must be None, True or a Tracer (wants/emit); got {short_repr(trace)}"
+        )
     return trace
 
 
@@ -69,15 +78,20 @@ def scan_snapped(
     rule: str = "nonzero",
     arithmetic: str = "exact",
     trace: Tracer | None = None,
+    reserved: int = 0,
 ) -> tuple[np.ndarray, ScanStats]:
     """Spans and stats of a snapped polygon: the kernel when untraced and int64, else the reference.
 
     The compiled path counts every `ScanStats` field but `swaps`, which stays 0:
     it sorts the active edges by ceil(x), which gives the same spans with other swaps.
+    Its span buffer grows as needed within the memory limit less `reserved`
+    bytes (what the caller will allocate next to the spans); past that it
+    raises `scanviz.limits.ResourceLimitError`.
     """
     if trace is not None or not snapped.compilable:
         return scan_reference(snapped, width, height, rule=rule, arithmetic=arithmetic, trace=trace)
-    spans, (edges, kept, rows, max_active) = kernels.scan_spans(
+    max_spans = max(current_memory_limit() - reserved, 0) // SPAN_BUFFER_BYTES
+    spans, (edges, kept, rows, max_active), refused = kernels.scan_spans(
         np.array(snapped.units),  # a writable copy: one compiled signature for every caller
         snapped.offsets,
         snapped.scale,
@@ -86,7 +100,13 @@ def scan_snapped(
         rule == "evenodd",
         arithmetic == "exact",
         np.float32 if arithmetic == "float32" else np.float64,
+        max_spans,
     )
+    if refused:
+        check_memory(
+            refused * SPAN_BUFFER_BYTES + reserved,
+            f"scan conversion: at least {refused} spans on a {width}x{height} raster",
+        )
     stats = ScanStats(
         edges=edges,
         kept_for_topology=kept,
@@ -137,6 +157,19 @@ def scan_convert(
         is not None or the input needs at most 16 bits) gives the reference's
         spans and stats, except ``stats.swaps``, which it leaves at 0.
 
+    Raises
+    ------
+    TypeError
+        If a coordinate is not a real number (bool, str, complex, object), or
+        an option has the wrong type.
+    ValueError
+        If `polygon` is malformed (see `Polygon`: shape, non-finite values,
+        coordinates beyond +-2**20, fewer than 3 distinct vertices), or an
+        option is unknown or out of range.
+    scanviz.limits.ResourceLimitError
+        (a ValueError) If the mask (width * height bytes) and the spans (24
+        bytes each) would exceed the memory limit (`scanviz.limits`).
+
     Examples
     --------
     >>> result = scan_convert([(0, 0), (4, 0), (4, 3)], 5, 3)
@@ -153,34 +186,25 @@ def scan_convert(
     check_choice("rule", rule, RULES)
     check_choice("arithmetic", arithmetic, ARITHMETICS)
     tracer = as_tracer(trace)
+    mask_bytes = width * height
+    check_memory(
+        mask_bytes + VERTEX_BYTES * polygon.vertex_count,
+        f"scan_convert: a {width}x{height} bool mask",
+    )
     snapped = snap(polygon, sample, subpixel_bits)
     spans, stats = scan_snapped(
-        snapped, width, height, rule=rule, arithmetic=arithmetic, trace=tracer
+        snapped, width, height, rule=rule, arithmetic=arithmetic, trace=tracer, reserved=mask_bytes
     )
     recorded = tracer.trace() if isinstance(tracer, Recorder) else None
     return ScanResult(paint_spans(spans, width, height), spans, stats, recorded)
 
 
-def _as_batch(value: object) -> np.ndarray | None:
-    """`value` as a (T, N, 2) float64 array if it converts to one, else None."""
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
+def _as_batch(polygons: object) -> np.ndarray | None:
+    """`polygons` as a checked (P, N, 2) float64 array if it is one block of N >= 3 vertices each."""
+    raw = nested_array(polygons)
+    if raw is None or raw.ndim != 3 or raw.shape[1] < 3 or raw.shape[2] != 2:
         return None
-    return array if array.ndim == 3 and array.shape[2] == 2 else None
-
-
-def _check_batch(name: str, batch: np.ndarray) -> None:
-    """Raise if a (T, N, 2) batch has a non-finite vertex or one beyond the coordinate limit."""
-    for broken, rule in (
-        (~np.isfinite(batch), "is not finite"),
-        (np.abs(batch) > COORD_LIMIT, f"is beyond the coordinate limit of +-{COORD_LIMIT} pixels"),
-    ):
-        if broken.any():
-            item, vertex, _ = np.argwhere(broken)[0].tolist()
-            raise ValueError(
-                f"{name!r}[{item}] vertex {vertex} = {batch[item, vertex].tolist()} {rule}"
-            )
+    return as_coordinates(raw, "'polygons'", ("P", "N", 2))
 
 
 def _three_distinct(batch: np.ndarray) -> np.ndarray:
@@ -261,6 +285,18 @@ def fill_polygons(
         The number of polygons covering each sample: the sum of their
         `scan_convert` masks (exact arithmetic), row 0 at the bottom.
 
+    Raises
+    ------
+    TypeError
+        If `polygons` is not iterable, an item is not a polygon, a coordinate
+        is not a real number, or an option has the wrong type.
+    ValueError
+        If an item is not a valid `Polygon` (the message names it as
+        ``'polygons'[i]``), or an option is unknown or out of range.
+    scanviz.limits.ResourceLimitError
+        (a ValueError) If the (height, width) int32 raster and the working
+        memory would exceed the memory limit (`scanviz.limits`).
+
     Examples
     --------
     >>> square = [(0, 0), (3, 0), (3, 2), (0, 2)]
@@ -272,9 +308,11 @@ def fill_polygons(
     check_choice("sample", sample, SAMPLE_MODES)
     check_choice("rule", rule, RULES)
     bits = check_subpixel_bits(subpixel_bits)
+    what = f"fill_polygons: a {width}x{height} int32 coverage raster"
+    check_memory(COUNT_BYTES * width * height, what)
     batch = _as_batch(polygons)
-    if batch is not None and batch.shape[1] >= 3:  # P one-contour polygons: validate at once
-        _check_batch("polygons", batch)
+    if batch is not None:  # P one-contour polygons: validate at once
+        check_memory(_batch_bytes(batch, width, height), what)
         few = np.flatnonzero(~_three_distinct(batch))
         if few.size:
             distinct = len(np.unique(batch[few[0]], axis=0))
@@ -297,8 +335,12 @@ def fill_polygons(
     try:
         items = list(polygons)  # type: ignore[call-overload]
     except TypeError:
-        raise TypeError(f"'polygons' must be an iterable of polygons; got {polygons!r}") from None
+        raise TypeError(
+            f"'polygons' must be an iterable of polygons; got {short_repr(polygons)}"
+        ) from None
     snapped = [snap(_as_polygon(p, i), sample, bits) for i, p in enumerate(items)]
+    rasters = 1 + any(not s.compilable for s in snapped)  # the reference's spans get their own
+    check_memory(COUNT_BYTES * width * height * rasters + 16 * height, what)
     image = kernels.fill_polygons(
         *_pack([s for s in snapped if s.compilable]), width, height, rule == "evenodd"
     )
@@ -309,18 +351,9 @@ def fill_polygons(
     return image
 
 
-def _as_triangles(triangles: object) -> np.ndarray:
-    """`triangles` as a valid (T, 3, 2) float64 array (DESIGN §6)."""
-    try:
-        array = np.asarray(triangles, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise type(error)(f"'triangles' must be a (T, 3, 2) array of numbers: {error}") from None
-    if array.shape == (0,):
-        return array.reshape(0, 3, 2)
-    if array.ndim != 3 or array.shape[1:] != (3, 2):
-        raise ValueError(f"'triangles' must be a (T, 3, 2) array; got shape {array.shape}")
-    _check_batch("triangles", array)
-    return array
+def _batch_bytes(batch: np.ndarray, width: int, height: int) -> int:
+    """Memory of counting a (T, N, 2) batch: the int32 raster, row marks, snapped copies."""
+    return COUNT_BYTES * width * height + 16 * height + 3 * batch.nbytes
 
 
 def rasterize_triangles(
@@ -356,9 +389,16 @@ def rasterize_triangles(
 
     Raises
     ------
+    TypeError
+        If a coordinate is not a real number (bool, str, complex, object), or
+        an option has the wrong type.
     ValueError
-        If `triangles` is not (T, 3, 2), or has a non-finite coordinate or one
-        beyond +-2**20 (the message names the first such triangle).
+        If `triangles` is not (T, 3, 2) (a ragged one names the first item of
+        the wrong length), or has a non-finite coordinate or one beyond
+        +-2**20 (the message names the first such triangle and vertex).
+    scanviz.limits.ResourceLimitError
+        (a ValueError) If the (height, width) int32 raster and the working
+        memory would exceed the memory limit (`scanviz.limits`).
 
     Examples
     --------
@@ -371,7 +411,10 @@ def rasterize_triangles(
     width, height = check_raster_size(width, height)
     check_choice("sample", sample, SAMPLE_MODES)
     bits = check_subpixel_bits(subpixel_bits)
-    vertices = _as_triangles(triangles)
+    what = f"rasterize_triangles: a {width}x{height} int32 coverage raster"
+    check_memory(COUNT_BYTES * width * height, what)
+    vertices = as_coordinates(triangles, "'triangles'", ("T", 3, 2))
+    check_memory(_batch_bytes(vertices, width, height), what)
     snapped = _snap_batch(vertices, sample, bits)
     if snapped is None:  # a grid finer than int64 takes: the reference, triangle by triangle
         spans = [

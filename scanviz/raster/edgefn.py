@@ -21,18 +21,20 @@ and 1 otherwise. All coordinates are integers on the grid of
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..conventions import (
-    COORD_LIMIT,
     SAMPLE_MODES,
     check_choice,
+    check_index,
     check_raster_size,
     check_subpixel_bits,
 )
-from ..geometry import Polygon
+from ..geometry import Polygon, as_coordinates
+from ..limits import check_memory
 from ..trace import Recorder, Trace
 from ..trace.events import EdgeFunctionRecord, EdgeFunctionRow, TriangleSetup
 from .api import as_tracer
@@ -40,6 +42,7 @@ from .fixed import snap
 
 INT64_LIMIT = 2**63
 BLOCK_SAMPLES = 2**16  # samples evaluated per numpy block, to bound memory
+SAMPLE_BYTES = 2 * (8 + 8 + 3 * 8)  # ys, xs, barycentric of a covered sample; once more joined
 
 
 @dataclass(frozen=True)
@@ -73,24 +76,6 @@ class EdgeFunction:
 
     def at(self, px: int, py: int) -> int:
         return self.a * px + self.b * py + self.c
-
-
-def _as_triangle(triangle: object) -> np.ndarray:
-    try:
-        vertices = np.array(triangle, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise TypeError(f"'triangle' must be a (3, 2) array of numbers: {error}") from None
-    if vertices.shape != (3, 2):
-        raise ValueError(f"'triangle' must be a (3, 2) array; got shape {vertices.shape}")
-    for i, vertex in enumerate(vertices):
-        if not np.isfinite(vertex).all():
-            raise ValueError(f"'triangle' vertex {i} is not finite: {vertex.tolist()}")
-        if (np.abs(vertex) > COORD_LIMIT).any():
-            raise ValueError(
-                f"'triangle' vertex {i} = {vertex.tolist()} is beyond the coordinate limit "
-                f"of +-{COORD_LIMIT} pixels"
-            )
-    return vertices
 
 
 def _edge_function(start: tuple[int, int], end: tuple[int, int], orientation: int) -> EdgeFunction:
@@ -160,6 +145,19 @@ def triangle_samples(
         Covered samples as ``ys``, ``xs`` and their ``barycentric`` weights.
         Zero-area triangles cover nothing; one with a repeated vertex records no events.
 
+    Raises
+    ------
+    TypeError
+        If a coordinate is not a real number (bool, str, complex, object), or
+        `width`, `height`, `subpixel_bits`, `polygon` or `trace` has the wrong type.
+    ValueError
+        If `triangle` is not (3, 2), has a non-finite coordinate or one beyond
+        +-2**20, or an option is unknown or out of range (`polygon` < 0).
+    scanviz.limits.ResourceLimitError
+        (a ValueError) If the covered samples could need more than the memory
+        limit (`scanviz.limits`): 80 bytes a sample, up to the triangle's area
+        plus half its perimeter plus one, within its clipped bounding box.
+
     Notes
     -----
     Agrees sample for sample with `scan_convert` on the same triangle: both
@@ -178,10 +176,11 @@ def triangle_samples(
     >>> cover.barycentric[(cover.xs == 2) & (cover.ys == 0)]  # halfway along edge 0
     array([[0.5, 0.5, 0. ]])
     """
-    vertices = _as_triangle(triangle)
+    vertices = as_coordinates(triangle, "'triangle'", (3, 2))
     width, height = check_raster_size(width, height)
     check_choice("sample", sample, SAMPLE_MODES)
     check_subpixel_bits(subpixel_bits)
+    polygon = check_index("polygon", polygon)
     tracer = as_tracer(trace)
     if len(np.unique(vertices, axis=0)) == 3:
         snapped = snap(Polygon(vertices), sample, subpixel_bits)
@@ -206,6 +205,10 @@ def _scan_bbox(snapped, width, height, tracer, polygon):
     if orientation == 0 or x_lo == x_hi or y_lo == y_hi:
         x_hi, y_hi = x_lo, y_lo  # nothing to test
     bbox = (x_lo, y_lo, x_hi, y_hi)
+    check_memory(
+        SAMPLE_BYTES * _most_samples(units, area2, scale, bbox),
+        f"triangle_samples: the samples of a triangle on a {width}x{height} raster",
+    )
     if tracer is not None and tracer.wants("triangle_setup", polygon=polygon):
         tracer.emit(_setup_event(snapped, units, edges, area2, orientation, bbox, polygon))
     if x_lo == x_hi:
@@ -232,6 +235,19 @@ def _scan_bbox(snapped, width, height, tracer, polygon):
         opposite = np.stack([values[1][inside], values[2][inside], values[0][inside]], axis=1)
         found.append((ys + row, xs + x_lo, _ratio(opposite, area2)))
     return tuple(np.concatenate(part) for part in zip(*found, strict=True))
+
+
+def _most_samples(units, area2: int, scale: int, bbox: tuple[int, int, int, int]) -> int:
+    """An upper bound on the samples a triangle covers within `bbox`.
+
+    A closed convex region of area A and perimeter P holds at most
+    A + P/2 + 1 lattice points; the clipped bounding box bounds them too.
+    """
+    x_lo, y_lo, x_hi, y_hi = bbox
+    pixels = [(x / scale, y / scale) for x, y in units]  # int / int: no overflow on fine grids
+    perimeter = sum(math.dist(pixels[i], pixels[(i + 1) % 3]) for i in range(3))
+    lattice = abs(area2) / (2 * scale * scale) + perimeter / 2 + 1
+    return int(min((x_hi - x_lo) * (y_hi - y_lo), math.ceil(lattice)))
 
 
 def _ratio(numerators: np.ndarray, denominator: int) -> np.ndarray:

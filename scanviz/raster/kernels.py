@@ -15,6 +15,9 @@ that cannot change a span:
   reach 2**38, their product 2**76, beyond int64: `mul_divmod` divides it
   exactly all the same.
 
+The span buffer grows with the output (a row adds fewer than min(active
+edges, width + 1) spans), never past the `max_spans` its caller allows.
+
 Coverage counts (`fill_polygons`, `rasterize_triangles`) are accumulated as
 +1/-1 marks where spans start and end, then one prefix sum per row: the cost is
 O(spans + pixels), not O(covered area). `rasterize_triangles` walks a triangle
@@ -195,6 +198,16 @@ def sort_by_ceil(aet, xs, count):
 
 
 @njit(cache=True, inline="always")
+def reserve(spans, needed, most):
+    """`spans`, or a copy with room for `needed` <= `most` rows (doubled, capped at `most`)."""
+    if needed <= spans.shape[0]:
+        return spans
+    grown = np.empty((min(max(needed, 2 * spans.shape[0]), most), 3), np.int64)
+    grown[: spans.shape[0]] = spans
+    return grown
+
+
+@njit(cache=True, inline="always")
 def store_spans(aet, count, y, width, parity, spans, span_count):
     """span: store the clipped, nonempty inside runs between consecutive crossings."""
     winding = 0
@@ -227,19 +240,20 @@ def mark_crossings(aet, count, y, parity, image):
 
 
 @njit(cache=True)
-def scan_polygon(units, offsets, scale, width, height, evenodd, exact, cast, image):
+def scan_polygon(units, offsets, scale, width, height, evenodd, exact, cast, image, max_spans):
     """ET/AET scan conversion of one polygon (contours `offsets` of `units`).
 
     `cast` is np.float32 or np.float64 for the float arithmetic (unused when
     `exact`). The spans are added to the (height, width) int32 `image` as
-    `mark_crossings` marks, or, if `image` is empty, returned.
-    Returns (spans, (edges, kept_for_topology, rows_scanned, max_active)).
+    `mark_crossings` marks, or, if `image` is empty, returned, in a buffer
+    of at most `max_spans` rows. Returns (spans, (edges, kept_for_topology,
+    rows_scanned, max_active), refused): `refused` is 0, or the buffer rows
+    the scan needed beyond `max_spans` (it stopped there).
     """
     table, edges, kept_for_topology = edge_table(units, offsets, scale, height)
     count = table.shape[1]
-    # A row of n active edges has at most n - 1 spans: room for all, so no regrowth.
-    capacity = 0 if image.size else np.sum(np.minimum(table[ROW_END], height) - table[ROW_START])
-    spans = np.empty((capacity, 3), np.int64)
+    spans = np.empty((0 if image.size else min(count, 1024), 3), np.int64)
+    refused = 0
     aet = np.empty((8, count + 1), np.int64)
     xs = np.empty((2, count + 1), cast)
     parity = 1 if evenodd else -1  # winding & parity: odd for even-odd, nonzero for nonzero
@@ -266,19 +280,29 @@ def scan_polygon(units, offsets, scale, width, height, evenodd, exact, cast, ima
         if image.size:
             mark_crossings(aet, n_active, y, parity, image)
         else:
+            # A row's spans are nonempty, disjoint and clipped: fewer than n_active, at most width.
+            needed = span_count + min(n_active, width + 1)
+            if needed > max_spans:
+                refused = needed
+                break
+            spans = reserve(spans, needed, max_spans)
             span_count = store_spans(aet, n_active, y, width, parity, spans, span_count)
         y += 1
-    return spans[:span_count], (edges, kept_for_topology, rows_scanned, max_active)
+    return spans[:span_count], (edges, kept_for_topology, rows_scanned, max_active), refused
 
 
 @njit(cache=True)
-def scan_spans(units, offsets, scale, width, height, evenodd, exact, cast):
-    """Spans (K, 3) int64 of one polygon, and its (edges, kept, rows_scanned, max_active)."""
+def scan_spans(units, offsets, scale, width, height, evenodd, exact, cast, max_spans):
+    """Spans (K, 3) int64 of one polygon, its (edges, kept, rows_scanned, max_active), refused.
+
+    `refused` is nonzero when the spans would need a buffer of more than
+    `max_spans` rows (then the spans returned are only those found so far).
+    """
     no_image = np.empty((0, 0), np.int32)
-    spans, stats = scan_polygon(
-        units, offsets, scale, width, height, evenodd, exact, cast, no_image
+    spans, stats, refused = scan_polygon(
+        units, offsets, scale, width, height, evenodd, exact, cast, no_image, max_spans
     )
-    return spans.copy(), stats  # not a view of the worst-case buffer
+    return spans.copy(), stats, refused  # not a view of the grown buffer
 
 
 @njit(cache=True)
@@ -361,7 +385,7 @@ def fill_polygons(units, contour_offsets, polygon_contours, scales, width, heigh
     # Bottom to top: polygons scanned one after the other then mark nearby rows (cache).
     for p in np.argsort(bounds[:, 0]):
         offsets = contour_offsets[polygon_contours[p] : polygon_contours[p + 1] + 1]
-        scan_polygon(units, offsets, scales[p], width, height, evenodd, True, np.float64, image)
+        scan_polygon(units, offsets, scales[p], width, height, evenodd, True, np.float64, image, 0)
         for y in range(bounds[p, 0], bounds[p, 1]):
             marked[0, y] = min(marked[0, y], bounds[p, 2])
             marked[1, y] = max(marked[1, y], bounds[p, 3])

@@ -32,16 +32,18 @@ import numbers
 
 import numpy as np
 
-from ..conventions import COORD_LIMIT
+from ..conventions import COORD_LIMIT, short_repr
 from ..trace import Tracer
 from ..trace.events import LineSetup, LineStep
 
 
 def _check_endpoint(name: str, value: object) -> int:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name!r} must be an int; got {value!r}")
+        raise TypeError(f"{name!r} must be an int; got {short_repr(value)}")
     if not -COORD_LIMIT <= value <= COORD_LIMIT:
-        raise ValueError(f"{name!r} must be within +-{COORD_LIMIT}; got {value}")
+        raise ValueError(
+            f"{name!r} must be within +-2**20 = {COORD_LIMIT}; got {short_repr(value)}"
+        )
     return int(value)
 
 
@@ -101,7 +103,7 @@ def midpoint_line(
         for name, value in (("x0", x0), ("y0", y0), ("x1", x1), ("y1", y1))
     )
     if trace is not None and not isinstance(trace, Tracer):
-        raise TypeError(f"'trace' must be None or a Tracer (wants/emit); got {trace!r}")
+        raise TypeError(f"'trace' must be None or a Tracer (wants/emit); got {short_repr(trace)}")
     step_x, step_y = (1 if x1 >= x0 else -1), (1 if y1 >= y0 else -1)
     steep = abs(y1 - y0) > abs(x1 - x0)
     major, minor = sorted((abs(x1 - x0), abs(y1 - y0)), reverse=True)

@@ -26,6 +26,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from ..limits import check_memory, current_memory_limit
 from ..trace.events import (
     AetEntry,
     AetSorted,
@@ -38,6 +39,7 @@ from ..trace.events import (
 from .fixed import SnappedPolygon
 
 FLOAT_X_LIMIT = 2.0**40  # float-mode crossings are clamped here before ceil (spans clip anyway)
+LISTED_SPAN_BYTES = 160  # a span as a tuple of three Python ints in a list, with its array row
 
 
 def _ceil_div(a: int, b: int) -> int:
@@ -292,7 +294,10 @@ def scan_reference(
 
     Returns the spans as a (K, 3) ndarray of int64 rows (y, x_start, x_end),
     sorted by y then x, clipped to the raster, and the `ScanStats`.
+    Raises `scanviz.limits.ResourceLimitError` as soon as the spans found
+    outgrow the memory limit.
     """
+    most_spans = current_memory_limit() // LISTED_SPAN_BYTES
     edges, buckets = bucketed_edge_table(snapped, height, arithmetic, trace, polygon)
     stats = ScanStats(edges=len(edges), kept_for_topology=sum(e.bucket >= e.row_end for e in edges))
     spans: list[tuple[int, int, int]] = []
@@ -320,6 +325,11 @@ def scan_reference(
         stats.max_active = max(stats.max_active, len(active))
         row_spans = list(_row_spans(active, rule == "evenodd", width))
         spans.extend((y, start, end) for start, end, _ in row_spans)
+        if len(spans) > most_spans:
+            check_memory(
+                len(spans) * LISTED_SPAN_BYTES,
+                f"scan conversion (reference): {len(spans)} spans by row {y} of {height}",
+            )
         if trace is not None:
             _emit_row(trace, polygon, y, retired, entering, active, swaps, row_spans, snapped)
         y += 1

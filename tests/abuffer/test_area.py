@@ -225,3 +225,37 @@ def test_coverage_benchmark_quick_prints_every_method(tmp_path, capsys):
     exact = next(line for line in lines if line.startswith("exact area")).split()
     assert exact[-3:-1] == ["0.00e+00", "0.00e+00"]  # RMS and max error of the reference itself
     assert plot.stat().st_size > 0
+
+
+def test_issue8_d7_memory_is_linear_in_the_edges_and_stays_exact():
+    # The old kernel sized a break buffer n(n-1)/2 for n edges active in one row.
+    from scanviz.limits import ResourceLimitError, memory_limit
+
+    n = 100_000
+    x = 64 * np.arange(n) / n
+    top = np.stack([x[::-1], np.where(np.arange(n) % 2, 1.0, 0.5)], axis=1)  # a zigzag roof
+    roof = Polygon(np.concatenate([[(0, 0), (64, 0)], top]))
+    with memory_limit("64M"):
+        ours = area_coverage(roof, 64, 1, subpixel_bits=None)
+    expected = oracle_coverage(roof, 64, 1, "nonzero", None)
+    np.testing.assert_allclose(ours, expected, rtol=0, atol=1e-9)
+    # A zigzag whose closing edge crosses all of its 2,000 edges in one row.
+    zigzag = Polygon(np.stack([8 * np.arange(2000) / 2000, np.arange(2000) % 2], axis=1))
+    with memory_limit("8M"):  # the old buffer alone: 16 MB
+        ours = area_coverage(zigzag, 8, 1, subpixel_bits=None)
+    expected = oracle_coverage(zigzag, 8, 1, "nonzero", None)
+    np.testing.assert_allclose(ours, expected, rtol=0, atol=1e-9)
+    with pytest.raises(ResourceLimitError, match="area_coverage: a 65536x65536 float64 raster"):
+        area_coverage([(0, 0), (9, 0), (0, 9)], 65536, 65536)
+
+
+@pytest.mark.parametrize("huge", [10**400, 2**1024])
+def test_issue8_d8_huge_ints_are_a_value_error_naming_the_vertex(huge):
+    with pytest.raises(ValueError, match=r"contour 0 vertex 1 = .* \+-2\*\*20"):
+        area_coverage([(0, 0), (huge, 0), (0, 1)], 8, 8)
+
+
+def test_issue8_d9_non_real_coordinates_are_a_type_error():
+    for bad in (7j, "4", True):
+        with pytest.raises(TypeError, match=r"contour 0 .* numbers .* vertex 1 holds"):
+            area_coverage([(0, 0), (bad, 0), (0, 4)], 8, 8)

@@ -297,3 +297,37 @@ def test_bad_options_are_named():
         triangle_samples(triangle, 4.0, 4)
     with pytest.raises(TypeError, match="'trace'"):
         triangle_samples(triangle, 4, 4, trace="yes")
+
+
+def test_issue8_d7_covered_samples_over_the_memory_limit_are_refused():
+    from scanviz.limits import ResourceLimitError, memory_limit
+
+    with pytest.raises(ResourceLimitError, match="triangle_samples: the samples of a triangle"):
+        triangle_samples([(0, 0), (65536, 0), (0, 65536)], 65536, 65536)
+    with memory_limit("1M"):  # about 13,000 samples of 80 bytes
+        assert len(triangle_samples([(0, 0), (100, 0), (0, 100)], 128, 128).xs) == 5050
+        with pytest.raises(ResourceLimitError, match="over the memory limit of 1.0 MiB"):
+            triangle_samples([(0, 0), (200, 0), (0, 200)], 256, 256)
+
+
+@pytest.mark.parametrize("huge", [10**400, 2**1024])
+def test_issue8_d8_huge_ints_are_a_value_error_naming_the_vertex(huge):
+    with pytest.raises(ValueError, match=r"'triangle' vertex 1 = .* \+-2\*\*20"):
+        triangle_samples([(0, 0), (huge, 0), (0, 1)], 8, 8)
+
+
+def test_issue8_d9_types_of_coordinates_and_options_are_checked():
+    triangle = [(0, 0), (4, 0), (0, 4)]
+    for bad in (7j, "4", True):
+        with pytest.raises(TypeError, match=r"'triangle' .* numbers .* vertex 1 holds"):
+            triangle_samples([(0, 0), (bad, 0), (0, 4)], 8, 8)
+    with pytest.raises(TypeError, match=r"'polygon' must be an int >= 0; got 'not an int'"):
+        triangle_samples(triangle, 8, 8, polygon="not an int")
+    with pytest.raises(TypeError, match=r"'polygon' must be an int"):
+        triangle_samples(triangle, 8, 8, polygon=True)
+    with pytest.raises(ValueError, match=r"'polygon' must be an int >= 0; got -1"):
+        triangle_samples(triangle, 8, 8, polygon=-1)
+    with pytest.raises(
+        ValueError, match=r"'triangle' must be a \(3, 2\) array; got shape \(4, 2\)"
+    ):
+        triangle_samples([*triangle, (1, 1)], 8, 8)

@@ -311,7 +311,7 @@ def test_shared_edges_are_covered_once():
     [
         ([(0, 0), (1, 0), (0, 1)], ValueError, r"'triangles' must be a \(T, 3, 2\) array"),
         (np.zeros((2, 4, 2)), ValueError, r"got shape \(2, 4, 2\)"),
-        ([[(0, 0), (1, "x"), (0, 1)]], ValueError, "'triangles' must be"),
+        ([[(0, 0), (1, "x"), (0, 1)]], TypeError, "'triangles' must be"),
         ([[(0, 0), (1, 0), (0, 1)], [(0, 0), (np.nan, 0), (0, 1)]], ValueError, r"\[1\] vertex 1"),
         ([[(0, 0), (1, 0), (0, 2**21)]], ValueError, r"'triangles'\[0\] vertex 2 .* limit"),
     ],
@@ -349,3 +349,53 @@ def test_fill_polygons_prefix_sums_only_marked_columns_and_fills_to_the_right_ed
         expected = mask_sum([Polygon(p) for p in polygons], WIDTH, HEIGHT, rule=rule)
         np.testing.assert_array_equal(fill_polygons(polygons, WIDTH, HEIGHT, rule=rule), expected)
     assert fill_polygons(polygons, WIDTH, HEIGHT)[12, WIDTH - 1] == 1
+
+
+def test_issue8_d7_fill_and_triangles_refuse_rasters_over_the_memory_limit():
+    from scanviz.limits import ResourceLimitError, memory_limit
+
+    triangle = [(0, 0), (4, 0), (0, 4)]
+    with pytest.raises(ResourceLimitError, match="fill_polygons: a 65536x65536 int32"):
+        fill_polygons([triangle], 65536, 65536)
+    with pytest.raises(ResourceLimitError, match="rasterize_triangles: a 65536x65536 int32"):
+        rasterize_triangles([triangle], 65536, 65536)
+    with memory_limit("64K"):
+        with pytest.raises(ResourceLimitError, match="fill_polygons: a 256x256"):
+            fill_polygons([triangle], 256, 256)  # 256 KiB of counts
+        assert fill_polygons([triangle], 64, 64).sum() == 10  # 16 KiB fits
+
+
+@pytest.mark.parametrize("huge", [10**400, 2**1024])
+def test_issue8_d8_huge_ints_are_a_value_error_naming_the_item(huge):
+    triangle = [(0, 0), (4, 0), (0, 4)]
+    with pytest.raises(ValueError, match=r"'triangles'\[1\] vertex 0 = .* \+-2\*\*20"):
+        rasterize_triangles([triangle, [(huge, 0), (1, 0), (0, 1)]], 8, 8)
+    with pytest.raises(ValueError, match=r"'polygons'\[1\] vertex 0 = .* \+-2\*\*20"):
+        fill_polygons([triangle, [(huge, 0), (1, 0), (0, 1)]], 8, 8)
+    with pytest.raises(ValueError, match=r"'polygons'\[1\]: contour 0 vertex 0 = .* \+-2\*\*20"):
+        fill_polygons([triangle, [(huge, 0), (1, 0), (0, 1), (1, 1)]], 8, 8)
+
+
+@pytest.mark.parametrize("bad", [7j, "0", True, None], ids=["complex", "str", "bool", "None"])
+def test_issue8_d9_non_real_coordinates_are_a_type_error(bad):
+    triangle = [(0, 0), (4, 0), (0, 4)]
+    with pytest.raises(TypeError, match=r"'triangles'\[1\] vertex 2 holds"):
+        rasterize_triangles([triangle, [(0, 0), (4, 0), (0, bad)]], 8, 8)
+    with pytest.raises(TypeError, match=r"'polygons'\[1\] vertex 2 holds"):
+        fill_polygons([triangle, [(0, 0), (4, 0), (0, bad)]], 8, 8)
+
+
+def test_issue8_d9_shapes_and_items_are_checked():
+    triangle = [(0, 0), (4, 0), (0, 4)]
+    with pytest.raises(ValueError, match=r"'triangles'\[1\] has 2 items; want 3"):
+        rasterize_triangles([triangle, [(0, 0), (1, 0)]], 8, 8)
+    with pytest.raises(ValueError, match=r"'triangles'\[0\] vertex 1 has 3 coordinates"):
+        rasterize_triangles([[(0, 0), (1, 0, 2), (0, 1)]], 8, 8)
+    with pytest.raises(TypeError, match=r"got dtype complex128"):
+        rasterize_triangles(np.zeros((1, 3, 2), complex), 8, 8)
+    assert rasterize_triangles([], 8, 8).sum() == 0
+    assert fill_polygons([], 8, 8).sum() == 0
+    with pytest.raises(TypeError, match=r"'polygons'\[0\]: 'contours' must be"):
+        fill_polygons([1, 2, 3], 8, 8)
+    with pytest.raises(TypeError, match=r"'polygons'\[0\]: 'contours' must be"):
+        fill_polygons([None], 8, 8)

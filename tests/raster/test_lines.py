@@ -186,3 +186,23 @@ def test_bad_endpoints_are_named(endpoints, error, message):
 def test_trace_must_be_a_tracer():
     with pytest.raises(TypeError, match="'trace' must be None or a Tracer"):
         midpoint_line(0, 0, 1, 1, trace=True)
+
+
+@pytest.mark.parametrize(
+    ("value", "error", "message"),
+    [
+        (
+            10**400,
+            ValueError,
+            r"'x1' must be within \+-2\*\*20 = 1048576; got <an int of 1329 bits>",
+        ),
+        (2**20 + 1, ValueError, r"'x1' must be within"),
+        (float("nan"), TypeError, r"'x1' must be an int; got nan"),
+        (True, TypeError, r"'x1' must be an int; got True"),
+        ("4", TypeError, r"'x1' must be an int; got '4'"),
+        (4.0, TypeError, r"'x1' must be an int; got 4.0"),
+    ],
+)
+def test_issue8_d9_endpoints_must_be_ints_within_the_limit(value, error, message):
+    with pytest.raises(error, match=message):
+        midpoint_line(0, 0, value, 0)

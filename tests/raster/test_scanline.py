@@ -612,3 +612,46 @@ def test_bad_input_raises_a_clear_error(polygon, options, error, message):
     arguments = {"width": 8, "height": 8, **options}
     with pytest.raises(error, match=message):
         scan_convert(polygon, **arguments)
+
+
+def test_issue8_d7_span_buffer_is_sized_by_the_output_not_the_edges():
+    # 4001 edges over 4096 rows: sum(rows per edge) * 24 bytes is ~390 MiB, the output ~100 KiB.
+    from scanviz.limits import memory_limit
+
+    zigzag = [(0, 0), (1, 4096)] * 2000 + [(2, 0)]  # the pairs cancel: a triangle remains
+    with memory_limit("32M"):
+        result = scan_convert(zigzag, 4, 4096)
+    triangle = scan_convert([(0, 0), (1, 4096), (2, 0)], 4, 4096)
+    np.testing.assert_array_equal(result.mask, triangle.mask)
+    np.testing.assert_array_equal(result.spans, triangle.spans)
+    assert result.mask[0].tolist() == [True, True, False, False]
+
+
+def test_issue8_d7_rasters_over_the_memory_limit_are_refused_before_allocating():
+    from scanviz.limits import ResourceLimitError, memory_limit
+
+    with pytest.raises(ResourceLimitError, match=r"scan_convert: a 65536x65536 bool mask"):
+        scan_convert([(0, 0), (9, 0), (0, 9)], 65536, 65536)
+    comb = [(0, 0), (256, 0)] + [(255 - i, 64 + 64 * (i % 2)) for i in range(256)]
+    with memory_limit("256K"), pytest.raises(ResourceLimitError, match=r"at least \d+ spans"):
+        scan_convert(comb, 256, 128)  # 8256 spans, 72 bytes each while the buffer grows
+    assert len(scan_convert(comb, 256, 128).spans) > 256 * 1024 // 72
+
+
+@pytest.mark.parametrize("huge", [10**400, 2**1024, -(2**1024)])
+def test_issue8_d8_huge_ints_are_a_value_error_naming_the_vertex(huge):
+    with pytest.raises(ValueError, match=r"contour 0 vertex 2 = .* limit of \+-2\*\*20"):
+        scan_convert([(0, 0), (4, 0), (0, huge)], 8, 8)
+    with pytest.raises(ValueError, match=r"contour 1 vertex 0 = "):
+        scan_convert([[(0, 0), (4, 0), (0, 4)], [(huge, huge), (1, 1), (2, 1)]], 8, 8)
+
+
+@pytest.mark.parametrize("bad", [7j, "4", True, None], ids=["complex", "str", "bool", "None"])
+def test_issue8_d9_non_real_coordinates_are_a_type_error(bad):
+    with pytest.raises(TypeError, match=r"contour 0 .* numbers .* vertex 1 holds"):
+        scan_convert([(0, 0), (4, bad), (0, 4)], 8, 8)
+
+
+def test_issue8_d9_ragged_polygon_names_the_vertex():
+    with pytest.raises(ValueError, match=r"contour 0 vertex 1 has 3 coordinates"):
+        scan_convert([(0, 0), (1, 0, 5), (0, 1)], 8, 8)
