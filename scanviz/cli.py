@@ -1,6 +1,11 @@
-"""Command line: ``python -m scanviz trace|fill|bench ...``.
+"""Command line: ``python -m scanviz trace|fill|render|bench|conformance ...``.
 
-Bad input exits with status 2 and a one-line message, never a traceback.
+Bad input exits with status 2 and exactly one line on stderr, never a
+traceback: a ValueError, TypeError or OSError (a refused resource limit is a
+ValueError) is the user's error, reported with newlines and other control
+characters escaped as in a Python string literal. Ctrl-C prints
+``interrupted`` and exits with 130. Any other exception is a bug and shows
+its traceback. Reference: ``docs/cli.md``.
 """
 
 from __future__ import annotations
@@ -8,10 +13,81 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from pathlib import Path
 
 import numpy as np
 
 from .geometry import Polygon
+from .limits import check_memory
+
+IMAGE_FORMATS = {".png": "png", ".jpg": "jpeg", ".jpeg": "jpeg", ".tif": "tiff", ".tiff": "tiff"}
+"""Output file extensions (any case) and their formats: PNG by matplotlib, the rest by Pillow."""
+_EXPORT_BYTES_PER_PIXEL = 40  # float RGBA and 8-bit copies while matplotlib encodes the image
+_SHOWN = 60  # longest argument quoted whole in a message
+
+
+def escaped(text: str) -> str:
+    """`text` on one line: control characters (newlines, tabs, ...) escaped as in a str literal.
+
+    >>> escaped("a\\nb\\tc é")
+    'a\\\\nb\\\\tc é'
+    """
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+
+
+def _shown(text: str) -> str:
+    """`text` quoted for a message, shortened if long."""
+    if len(text) <= _SHOWN:
+        return repr(text)
+    return f"{text[:_SHOWN]!r}... ({len(text):,} characters)"
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (the usage is what --help prints)."""
+
+    def error(self, message: str):  # type: ignore[override]
+        self.exit(2, f"{self.prog}: error: {escaped(message)} (see --help)\n")
+
+
+def _integer(text: str) -> int:
+    if len(text) > 30 or not text.strip().lstrip("+-").isdigit():
+        raise argparse.ArgumentTypeError(
+            f"must be an integer of at most 30 digits; got {_shown(text)}"
+        )
+    return int(text)
+
+
+def _at_least_one(text: str) -> int:
+    value = _integer(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1; got {value}")
+    return value
+
+
+def _image_format(path: str) -> str:
+    """The image format `path`'s extension names; ValueError listing the supported ones."""
+    if not path:
+        raise ValueError("-o/--output must be a file name; got ''")
+    suffix = Path(path).suffix.lower()
+    if suffix not in IMAGE_FORMATS:
+        raise ValueError(
+            f"-o/--output {_shown(path)}: unsupported image file extension "
+            f"{suffix or '(none)'!r}; supported: {', '.join(IMAGE_FORMATS)}"
+        )
+    return IMAGE_FORMATS[suffix]
+
+
+def _save_image(path: str, image: np.ndarray, **style: object) -> None:
+    """Write `image` (rows bottom-up, y up) to `path`, its format from the extension."""
+    import matplotlib.pyplot as plt
+
+    image_format = _image_format(path)
+    height, width = image.shape[:2]
+    check_memory(_EXPORT_BYTES_PER_PIXEL * width * height, f"a {width}x{height} image file")
+    if image_format == "jpeg" and image.ndim == 3:
+        image = image[..., :3]  # JPEG has no alpha channel
+    with open(path, "wb") as file:
+        plt.imsave(file, image[::-1], format=image_format, **style)  # files run top-down
 
 
 def parse_vertices(text: str) -> Polygon:
@@ -53,8 +129,8 @@ def _default_size(polygon: Polygon) -> tuple[int, int]:
 
 def _add_scan_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--vertices", required=True, help='"x,y x,y ..."; ";" separates contours')
-    parser.add_argument("--width", type=int, help="raster width (default: fits the polygon)")
-    parser.add_argument("--height", type=int, help="raster height (default: fits the polygon)")
+    parser.add_argument("--width", type=_integer, help="raster width (default: fits the polygon)")
+    parser.add_argument("--height", type=_integer, help="raster height (default: fits the polygon)")
     parser.add_argument("--sample", default="corner", choices=["corner", "center"])
     parser.add_argument("--rule", default="nonzero", choices=["nonzero", "evenodd"])
     parser.add_argument("--subpixel-bits", type=_subpixel_bits, default=8, metavar="N|none")
@@ -86,18 +162,16 @@ def _cmd_trace(args: argparse.Namespace) -> None:
 
 
 def _cmd_fill(args: argparse.Namespace) -> None:
-    import matplotlib.pyplot as plt
-
-    if args.scale < 1:
-        raise ValueError(f"--scale must be >= 1; got {args.scale}")
+    _image_format(args.output)  # before the work
     result = _scan(args, trace=False)
-    image = np.kron(
-        result.mask[::-1], np.ones((args.scale, args.scale), dtype=bool)
-    )  # PNG rows top-down
-    plt.imsave(args.output, image, cmap="gray", vmin=0, vmax=1)
-    print(
-        f"{args.output}: {result.mask.shape[1]}x{result.mask.shape[0]}, {int(result.mask.sum())} samples covered"
+    height, width = result.mask.shape
+    check_memory(
+        _EXPORT_BYTES_PER_PIXEL * width * height * args.scale**2,
+        f"a {width * args.scale}x{height * args.scale} image (--scale {args.scale})",
     )
+    image = np.kron(result.mask, np.ones((args.scale, args.scale), dtype=bool))
+    _save_image(args.output, image, cmap="gray", vmin=0, vmax=1)
+    print(f"{args.output}: {width}x{height}, {int(result.mask.sum())} samples covered")
 
 
 def _cmd_bench(args: argparse.Namespace) -> None:
@@ -106,18 +180,38 @@ def _cmd_bench(args: argparse.Namespace) -> None:
     run(args.suite, quick=args.quick, plot=args.plot)
 
 
-def _cmd_render(args: argparse.Namespace) -> None:
-    import matplotlib.pyplot as plt
+def _load(source: str, width: int, height: int):
+    """The scene `source` names; an OBJ model is framed for a width x height raster."""
+    from .io import frame_model, is_obj_path, load_obj, load_scene
 
-    from .io import load_scene
+    if is_obj_path(source):
+        return frame_model(load_obj(source), aspect=width / height, name=Path(source).stem)
+    return load_scene(source)
+
+
+def _cmd_render(args: argparse.Namespace) -> None:
     from .pipeline import render
 
-    scene = load_scene(args.scene)
-    result = render(scene, args.width, args.height, shading=args.shading, sample=args.sample)
+    if args.output is not None:
+        _image_format(args.output)  # refuse a bad name before the work
+    scene = _load(args.scene, args.width, args.height)
+    result = render(
+        scene,
+        args.width,
+        args.height,
+        shading=args.shading,
+        visibility=args.visibility,
+        sample=args.sample,
+        perspective_correct=args.perspective_correct,
+        cull=args.cull,
+        edges=args.edges,
+        mask=args.mask,
+        weights=args.weights,
+    )
     if args.plan:
         print(result.plan)
-    if args.output:
-        plt.imsave(args.output, result.image[::-1])  # PNG rows run top-down
+    if args.output is not None:
+        _save_image(args.output, np.clip(result.image, 0.0, 1.0))
     s = result.stats
     print(
         f"{args.output or args.scene}: {args.width}x{args.height}, {s.polygons_in} polygons "
@@ -126,8 +220,48 @@ def _cmd_render(args: argparse.Namespace) -> None:
     )
 
 
+def _cmd_conformance(args: argparse.Namespace) -> int:
+    from .conformance import main as conformance_main  # imported only when asked for
+
+    return conformance_main(fuzz=args.fuzz, seed=args.seed)
+
+
+def _add_render_options(render: argparse.ArgumentParser) -> None:
+    render.add_argument(
+        "scene", help="SCENE.json, MODEL.obj (framed automatically) or builtin:NAME"
+    )
+    render.add_argument("-o", "--output", help=f"image file to write: {', '.join(IMAGE_FORMATS)}")
+    render.add_argument("--width", type=_at_least_one, default=512, help="pixels, >= 1")
+    render.add_argument("--height", type=_at_least_one, default=512, help="pixels, >= 1")
+    render.add_argument("--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch"])
+    render.add_argument("--visibility", default="zbuffer", choices=["zbuffer", "abuffer", "flawed"])
+    render.add_argument("--edges", action="store_true", help="draw feature edges")
+    render.add_argument("--mask", default="8x8", choices=["4x4", "8x4", "8x8"], help="a-buffer")
+    render.add_argument("--weights", default="area", choices=["area", "mask"], help="a-buffer")
+    render.add_argument(
+        "--perspective-correct",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="interpolate with 1/w (default) or affinely in screen space",
+    )
+    render.add_argument(
+        "--affine",
+        dest="perspective_correct",
+        action="store_false",
+        help="= --no-perspective-correct",
+    )
+    render.add_argument(
+        "--cull",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="cull back faces (default: the scene's own, closed meshes only)",
+    )
+    render.add_argument("--sample", default="corner", choices=["corner", "center"])
+    render.add_argument("--plan", action="store_true", help="print which stages run and why")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="python -m scanviz", description=__doc__.splitlines()[0])
+    parser = _Parser(prog="python -m scanviz", description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(dest="command", required=True)
     trace = commands.add_parser(
         "trace", help="print the ET/AET/spans table of a polygon (or --json)"
@@ -137,17 +271,17 @@ def build_parser() -> argparse.ArgumentParser:
     trace.set_defaults(run=_cmd_trace)
     fill = commands.add_parser("fill", help="scan-convert a polygon into a PNG")
     _add_scan_options(fill)
-    fill.add_argument("-o", "--output", required=True, help="PNG file to write")
-    fill.add_argument("--scale", type=int, default=1, help="magnify each pixel to N x N in the PNG")
+    fill.add_argument(
+        "-o", "--output", required=True, help=f"image file to write: {', '.join(IMAGE_FORMATS)}"
+    )
+    fill.add_argument(
+        "--scale", type=_at_least_one, default=1, help="magnify each pixel to N x N in the image"
+    )
     fill.set_defaults(run=_cmd_fill)
-    render = commands.add_parser("render", help="render a scene (JSON file or builtin:NAME) to PNG")
-    render.add_argument("scene", help="SCENE.json or builtin:NAME")
-    render.add_argument("-o", "--output", help="PNG file to write")
-    render.add_argument("--width", type=int, default=512)
-    render.add_argument("--height", type=int, default=512)
-    render.add_argument("--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch"])
-    render.add_argument("--sample", default="corner", choices=["corner", "center"])
-    render.add_argument("--plan", action="store_true", help="print which stages run and why")
+    render = commands.add_parser(
+        "render", help="render a scene (JSON file, OBJ model or builtin:NAME) to an image"
+    )
+    _add_render_options(render)
     render.set_defaults(run=_cmd_render)
     bench = commands.add_parser("bench", help="benchmarks: run time against peers and error")
     bench.add_argument("suite", choices=["raster", "render", "coverage"])
@@ -156,15 +290,30 @@ def build_parser() -> argparse.ArgumentParser:
         "--plot", default="coverage.png", metavar="PATH", help="coverage: error-vs-time plot file"
     )
     bench.set_defaults(run=_cmd_bench)
+    conformance = commands.add_parser(
+        "conformance", help="the stress suite: PASS/FAIL per category"
+    )
+    conformance.add_argument(
+        "--fuzz", type=_integer, default=0, metavar="N", help="N more fuzz inputs"
+    )
+    conformance.add_argument("--seed", type=_integer, default=0, metavar="S", help="fuzz seed")
+    conformance.set_defaults(run=_cmd_conformance)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line on `argv` (default ``sys.argv[1:]``); return the exit status."""
     parser = build_parser()
-    args = parser.parse_args(argv)
     try:
-        args.run(args)
+        args = parser.parse_args(argv)
+    except SystemExit as stop:  # --help (0) or a one-line usage error (2)
+        return stop.code if isinstance(stop.code, int) else 2
+    try:
+        status = args.run(args)
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
     except (ValueError, TypeError, OSError) as error:
-        print(f"{parser.prog} {args.command}: error: {error}", file=sys.stderr)
+        print(f"{parser.prog} {args.command}: error: {escaped(str(error))}", file=sys.stderr)
         return 2
-    return 0
+    return status if isinstance(status, int) else 0

@@ -95,3 +95,134 @@ def test_bench_quick_runs(capsys):
     assert main(["bench", "raster", "--quick"]) == 0
     out = capsys.readouterr().out
     assert "100,000 small triangles" in out and "scanviz ms" in out
+
+
+# --- issue 8 -------------------------------------------------------------------------------
+
+TRIANGLE_OBJ = "v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n"
+
+
+def one_error_line(capsys, argv, status=2):
+    assert main(argv) == status
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "Traceback" not in err, err
+    return err
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["render", "builtin:sphere", "-o", "f.qqq"], "unsupported image file extension '.qqq'; supported: .png, .jpg"),
+        (["render", "builtin:sphere", "-o", "/tmp"], "unsupported image file extension '(none)'"),
+        (["render", "builtin:sphere", "-o", "/dev/full"], "unsupported image file extension '(none)'"),
+        (["render", "builtin:sphere", "-o", "noext"], "unsupported image file extension '(none)'"),
+        (["render", "builtin:sphere", "-o", ""], "-o/--output must be a file name; got ''"),
+        (["render", "builtin:sphere", "--width", "0"], "argument --width: must be >= 1; got 0"),
+        (["render", "builtin:sphere", "--height", "1" * 5000], "must be an integer of at most 30 digits"),
+        (["render", "builtin:sphere", "--visibility", "x\ny"], r"invalid choice: 'x\ny'"),
+        (["render", "no\nsuch.json"], r"No such file or directory: 'no\nsuch.json'"),
+        (["render", "builtin:sphere", "--bogus"], "unrecognized arguments: --bogus"),
+        (["fill", "--vertices", "0,0 4,0 0,4", "--scale", "100000", "-o", "x.png"], "over the memory limit"),
+        ([], "the following arguments are required: command"),
+    ],
+)  # fmt: skip
+def test_issue8_d11_every_cli_error_is_one_line(capsys, argv, message):
+    assert message in one_error_line(capsys, argv)
+
+
+def test_issue8_d11_bad_files_are_one_line_naming_the_file(capsys, tmp_path):
+    scene = tmp_path / "scene.json"
+    scene.write_bytes(b"\xff\xfe{}")
+    assert "scene.json' is not UTF-8 text" in one_error_line(capsys, ["render", str(scene)])
+    scene.write_text('{"version": ' + "9" * 5000 + "}")
+    assert "integer literal of 5000 digits" in one_error_line(capsys, ["render", str(scene)])
+    from scanviz.limits import file_limit
+
+    with file_limit("1M"):
+        assert "larger than the file limit" in one_error_line(capsys, ["render", "/dev/zero"])
+
+
+def test_issue8_d6_deep_json_is_one_line(capsys, tmp_path):
+    scene = tmp_path / "deep.json"
+    scene.write_text("[" * 5000 + "]" * 5000)
+    assert "nested 5000 deep" in one_error_line(capsys, ["render", str(scene)])
+
+
+def test_issue8_d11_interrupt_is_one_line_and_130(capsys, monkeypatch):
+    import scanviz.pipeline
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(scanviz.pipeline, "render", interrupted)
+    assert one_error_line(capsys, ["render", "builtin:painter"], status=130) == "interrupted\n"
+
+
+@pytest.mark.parametrize("suffix", [".png", ".jpg", ".JPEG", ".tif"])
+def test_issue8_d11_image_formats(tmp_path, suffix):
+    out = tmp_path / f"painter{suffix}"
+    assert (
+        main(["render", "builtin:painter", "--width", "16", "--height", "12", "-o", str(out)]) == 0
+    )
+    image = matplotlib.image.imread(out)
+    assert image.shape[:2] == (12, 16)
+    # Pixel (x, y) = (3, 3) of the slide (y up) is in the second polygon: green, opaque.
+    pixel = image[12 - 1 - 3, 3, :3] / (255 if image.dtype.kind == "u" else 1)
+    assert pixel.tolist() == pytest.approx([0, 1, 0], abs=0.02)
+
+
+def test_issue8_d13_render_an_obj_model_with_every_option(tmp_path, capsys):
+    model = tmp_path / "tri.OBJ"
+    model.write_text(TRIANGLE_OBJ)
+    out = tmp_path / "tri.png"
+    for options in (
+        [],
+        ["--visibility", "abuffer", "--mask", "4x4", "--weights", "mask", "--edges"],
+        ["--visibility", "flawed", "--affine", "--no-cull", "--shading", "flat"],
+        [
+            "--perspective-correct",
+            "--cull",
+            "--shading",
+            "gooch",
+            "--width",
+            "32",
+            "--height",
+            "16",
+        ],
+    ):
+        assert (
+            main(
+                ["render", str(model), "-o", str(out), "--width", "24", "--height", "24", *options]
+            )
+            == 0
+        )
+        image = matplotlib.image.imread(out)
+        assert image[..., :3].std() > 0  # the model shows against the background
+    assert capsys.readouterr().err == ""
+
+
+def test_issue8_d13_render_options_reach_the_renderer(monkeypatch):
+    import scanviz.pipeline
+
+    seen = {}
+    real = scanviz.pipeline.render
+
+    def spy(scene, width, height, **options):
+        seen.update(options)
+        return real(scene, width, height, **options)
+
+    monkeypatch.setattr(scanviz.pipeline, "render", spy)
+    argv = ["render", "builtin:painter", "--width", "16", "--height", "12"]
+    assert main(argv) == 0 and seen["cull"] is None and seen["perspective_correct"] is True
+    assert main([*argv, "--affine", "--cull", "--visibility", "abuffer", "--mask", "8x4"]) == 0
+    assert seen["cull"] is True and seen["perspective_correct"] is False
+    assert seen["visibility"] == "abuffer" and seen["mask"] == "8x4"
+    assert main([*argv, "--no-cull", "--weights", "mask", "--edges"]) == 0
+    assert seen["cull"] is False and seen["weights"] == "mask" and seen["edges"] is True
+
+
+def test_conformance_command_parses_its_arguments():
+    from scanviz.cli import build_parser
+
+    args = build_parser().parse_args(["conformance", "--fuzz", "50", "--seed", "7"])
+    assert (args.command, args.fuzz, args.seed) == ("conformance", 50, 7)

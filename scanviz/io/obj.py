@@ -9,7 +9,8 @@ What is read:
 * ``f`` polygons of any size >= 3, each corner ``v``, ``v/vt``, ``v//vn`` or
   ``v/vt/vn``; indices start at 1, negative indices count back from the last
   element defined so far (-1 is the latest), positive ones may refer forward;
-* ``#`` comments anywhere on a line, and ``\\`` line continuations.
+* ``#`` comments anywhere on a line, and ``\\`` line continuations; LF or CRLF
+  line ends, and a leading UTF-8 byte-order mark.
 
 Ignored, because a `~scanviz.scene.Mesh` has no place for them: texture
 coordinates (``vt``, ``vp``), grouping and naming (``o``, ``g``, ``s``,
@@ -26,6 +27,10 @@ faceted cube) is split into one vertex per normal; vertices are ordered by
 position index, then normal index, and positions no face uses are dropped.
 If some corner has no normal, all normals are ignored and the renderer
 derives them (``normals=None``); positions then keep the file's order.
+
+Framing: `frame_model` puts a mesh in a scene of its own, with a camera on its
+bounding sphere, two lights and a neutral material; ``load_scene("m.obj")``
+(`scanviz.io.load_scene`) and ``python -m scanviz render m.obj`` use it.
 """
 
 from __future__ import annotations
@@ -33,11 +38,12 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Iterator
-from pathlib import Path
 
 import numpy as np
 
-from ..scene.model import Mesh
+from ..limits import check_memory, read_bounded
+from ..scene.model import Camera, Light, Material, Mesh, Scene, SceneObject
+from ..vectors import unit_vectors, vector_norm
 
 IGNORED = frozenset(
     "vt vp o g s mg usemtl mtllib usemap maplib p l lod bevel c_interp d_interp shadow_obj "
@@ -110,11 +116,10 @@ def _parse(text: str, origin: str) -> tuple[list, list, list]:
         elif keyword == "vn":
             if len(arguments) != 3:
                 raise ValueError(f"{where}: 'vn' needs 3 values; got {len(arguments)}")
-            normal = np.array(_numbers(where, keyword, arguments))
-            length = np.linalg.norm(normal)
-            if not length > 0:
+            normal = unit_vectors(np.array(_numbers(where, keyword, arguments)))
+            if not normal.any():
                 raise ValueError(f"{where}: 'vn' must not be the zero vector")
-            normals.append(normal / length)
+            normals.append(normal)
         elif keyword == "f":
             if len(arguments) < 3:
                 raise ValueError(f"{where}: a face needs >= 3 corners; got {len(arguments)}")
@@ -153,6 +158,9 @@ def _parse(text: str, origin: str) -> tuple[list, list, list]:
     return positions, normals, faces
 
 
+_BYTES_PER_CHARACTER = 12
+
+
 def load_obj(source: str | os.PathLike, *, smooth: bool = True, closed: bool = False) -> Mesh:
     """Read a Wavefront OBJ mesh from a file or from OBJ text.
 
@@ -177,7 +185,11 @@ def load_obj(source: str | os.PathLike, *, smooth: bool = True, closed: bool = F
     ------
     ValueError
         For a malformed statement, an index out of range, an unsupported or
-        unknown statement, naming the file and line.
+        unknown statement, naming the file and line; for a file that is not
+        UTF-8 or larger than the file limit (`scanviz.limits.read_bounded`),
+        or text whose parse would pass the memory limit.
+    OSError
+        If the file cannot be read.
 
     Examples
     --------
@@ -196,11 +208,13 @@ def load_obj(source: str | os.PathLike, *, smooth: bool = True, closed: bool = F
     ValueError: line 2: vertex index 2 is out of range 1..1 ('v' lines in the file)
     """
     if isinstance(source, str) and "\n" in source:
-        text, origin = source, ""
+        text, origin = source.removeprefix("\ufeff"), ""
     elif isinstance(source, str | os.PathLike):
-        text, origin = Path(source).read_text(encoding="utf-8", errors="replace"), f"{source}, "
+        text, origin = read_bounded(source), f"{source}, "
     else:
         raise TypeError(f"'source' must be a path or OBJ text; got {type(source).__name__}")
+    # Python lists of parsed numbers take about 12 bytes per byte of OBJ text (measured).
+    check_memory(_BYTES_PER_CHARACTER * len(text), f"reading {len(text):,} characters of OBJ")
     positions, normals, faces = _parse(text, origin)
     sizes = [len(corners) for _, corners in faces]
     corners = [corner for _, face in faces for corner in face]
@@ -220,4 +234,98 @@ def load_obj(source: str | os.PathLike, *, smooth: bool = True, closed: bool = F
         normals=np.array(normals)[unique % len(normals)],
         smooth=smooth,
         closed=closed,
+    )
+
+
+# Framing: the camera looks at the bounding sphere's centre from this direction (+z, a bit
+# above: 18.4 degrees), with a vertical half field of view of 20 degrees.
+FRAME_DIRECTION = (0.0, 1.0, 3.0)
+FRAME_HALF_ANGLE = math.radians(20.0)
+FRAME_MARGIN = 1.1  # the sphere, grown by 10 %, just fits the window's smaller side
+FRAME_LIGHTS = (
+    Light("directional", color=(0.85, 0.85, 0.8), direction=(1.0, -1.0, -2.0)),  # key, upper left
+    Light("directional", color=(0.25, 0.27, 0.35), direction=(-1.0, 0.5, -1.0)),  # fill, right
+)
+FRAME_BACKGROUND = (0.08, 0.08, 0.1)
+
+
+def bounding_sphere(positions: np.ndarray) -> tuple[np.ndarray, float]:
+    """Centre of the axis-aligned bounding box and the largest distance from it to a position.
+
+    >>> centre, radius = bounding_sphere(np.array([[0.0, 0, 0], [2, 0, 0], [0, 2, 0]]))
+    >>> centre.tolist(), round(radius, 6)
+    ([1.0, 1.0, 0.0], 1.414214)
+    """
+    if not len(positions):
+        return np.zeros(3), 0.0
+    low, high = positions.min(axis=0), positions.max(axis=0)
+    centre = low / 2 + high / 2  # halves first: no overflow
+    return centre, float(vector_norm(positions - centre).max())
+
+
+def frame_model(mesh: Mesh, *, aspect: float = 1.0, name: str = "") -> Scene:
+    """A scene showing `mesh` whole: camera on its bounding sphere, two lights, a neutral material.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        Placed as is (identity ``world_from_model``).
+    aspect : float
+        Width / height of the raster the window is made for, in [1e-3, 1e3].
+    name : str
+        Of the scene and of its one object.
+
+    Returns
+    -------
+    Scene
+        A perspective camera at centre + d * (0, 1, 3) / |(0, 1, 3)| (from +z,
+        18.4 degrees above) looking at the bounding sphere's centre (see
+        `bounding_sphere`), up +y, at the distance d = 1.1 r / sin(20 deg)
+        where the sphere grown by 10 % fills the window's smaller side (a
+        half-angle of 20 degrees); near = d - 1.1 r, far = d + 1.1 r. A mesh
+        with no extent is framed as a sphere of radius 1 (or of 1e-9 of its
+        distance from the origin, if larger). Lights `FRAME_LIGHTS`: a key light
+        from the upper left and a dim blue fill from the right; the default
+        `Material` (grey 0.8, ambient 0.15, diffuse 0.7, specular 0.3,
+        exponent 32); background `FRAME_BACKGROUND`.
+
+    Examples
+    --------
+    >>> scene = frame_model(load_obj("v 0 0 0\\nv 2 0 0\\nv 0 2 0\\nf 1 2 3\\n"))
+    >>> scene.camera.look_at, round(scene.camera.near, 3), round(scene.camera.far, 3)
+    ((1.0, 1.0, 0.0), 2.993, 6.104)
+    """
+    if not isinstance(mesh, Mesh):
+        raise TypeError(f"'mesh' must be a Mesh; got {type(mesh).__name__}")
+    if isinstance(aspect, bool) or not isinstance(aspect, int | float) or not 1e-3 <= aspect <= 1e3:
+        raise ValueError(f"'aspect' must be a number in [0.001, 1000]; got {aspect!r}")
+    centre, radius = bounding_sphere(mesh.positions)
+    if not radius > 0:
+        radius = max(1.0, 1e-9 * float(np.abs(centre).max()))
+    radius = max(radius, 1e-9 * float(np.abs(centre).max()))  # resolvable at the centre
+    reach = FRAME_MARGIN * radius
+    distance = reach / math.sin(FRAME_HALF_ANGLE)
+    near, far = distance - reach, distance + reach
+    half = math.tan(FRAME_HALF_ANGLE) * near  # the smaller side's half extent on the near plane
+    half_width, half_height = (half * aspect, half) if aspect >= 1 else (half, half / aspect)
+    eye = centre + distance * unit_vectors(np.array(FRAME_DIRECTION))
+    try:
+        camera = Camera(
+            eye=tuple(eye.tolist()),
+            look_at=tuple(centre.tolist()),
+            window=(-half_width, half_width, -half_height, half_height),
+            near=near,
+            far=far,
+        )
+    except ValueError as error:
+        raise ValueError(
+            f"cannot frame the model (bounding sphere at {centre.tolist()}, radius {radius:g}): "
+            f"{error}"
+        ) from None
+    return Scene(
+        (SceneObject(mesh, Material(), name=name),),
+        camera,
+        lights=FRAME_LIGHTS,
+        background=FRAME_BACKGROUND,
+        name=name,
     )

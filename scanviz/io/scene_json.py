@@ -29,12 +29,29 @@ from pathlib import Path
 
 import numpy as np
 
+from ..limits import read_bounded
 from ..scene.builtin import BUILTIN_MESHES, builtin_scene
-from ..scene.model import Camera, Light, Material, Mesh, Scene, SceneObject
-from .obj import load_obj
+from ..scene.model import (
+    LINEAR_LIMIT,
+    WORLD_LIMIT,
+    Camera,
+    Light,
+    Material,
+    Mesh,
+    Scene,
+    SceneObject,
+    check_modeling_matrix,
+)
+from ..vectors import unit_vectors
+from .obj import frame_model, load_obj
 
 FORMAT_VERSION = 1
 BUILTIN_PREFIX = "builtin:"
+MAX_DEPTH = 64
+"""Deepest nesting of JSON arrays and objects a scene file may have (a scene needs 7)."""
+MAX_INTEGER_DIGITS = 400
+"""Longest integer literal read; longer ones are beyond float64 anyway (1.8e308 has 309 digits)."""
+_OBJ_SUFFIX = ".obj"
 
 # --- JSON values, each checked at its path -----------------------------------------------
 
@@ -218,11 +235,10 @@ def _light(path: str, value: object) -> Light:
 
 def _rotation(path: str, value: object) -> np.ndarray:
     fields = _object(path, value, ("axis", "degrees"))
-    axis = np.array(_vector(f"{path}.axis", fields["axis"], 3))
-    length = np.linalg.norm(axis)
-    if not length > 0:
+    axis = unit_vectors(np.array(_vector(f"{path}.axis", fields["axis"], 3)))
+    if not axis.any():
         raise ValueError(f"{path}.axis must not be the zero vector")
-    x, y, z = axis / length
+    x, y, z = axis
     degrees = _number(f"{path}.degrees", fields["degrees"])
     quarter_turns, rest = divmod(degrees, 90.0)
     if rest == 0:  # exact for multiples of 90 degrees
@@ -246,6 +262,8 @@ def _step(path: str, value: object) -> np.ndarray:
     matrix = np.eye(4)
     if name == "translate":
         matrix[:3, 3] = _vector(path, argument, 3)
+        if not (np.abs(matrix[:3, 3]) <= WORLD_LIMIT).all():
+            raise ValueError(f"{path} must be within +-{WORLD_LIMIT:g}; got {argument}")
     elif name == "scale":
         if isinstance(argument, list | tuple):
             factors = _vector(path, argument, 3)
@@ -255,6 +273,11 @@ def _step(path: str, value: object) -> np.ndarray:
             raise ValueError(
                 f"{path} factors must be nonzero (the normals need an inverse); got {argument}"
             )
+        if not all(1 / LINEAR_LIMIT <= abs(f) <= LINEAR_LIMIT for f in factors):
+            raise ValueError(
+                f"{path} factors must have magnitudes in [{1 / LINEAR_LIMIT:g}, {LINEAR_LIMIT:g}] "
+                f"(the matrix and its inverse stay bounded); got {argument}"
+            )
         matrix[:3, :3] = np.diag(factors)
     elif name == "rotate":
         matrix = _rotation(path, argument)
@@ -263,10 +286,10 @@ def _step(path: str, value: object) -> np.ndarray:
         if len(rows) != 4:
             raise ValueError(f"{path} must have 4 rows; got {len(rows)}")
         matrix = np.array([_vector(f"{path}[{i}]", row, 4) for i, row in enumerate(rows)])
-        if np.linalg.det(matrix[:3, :3]) == 0:
-            raise ValueError(
-                f"{path} must have an invertible upper-left 3x3 block (the normals need it)"
-            )
+        try:  # the model's rules: affine, bounded, an invertible 3x3 block
+            check_modeling_matrix(matrix)
+        except ValueError as error:
+            raise ValueError(str(error).replace("'world_from_model'", path, 1)) from None
     return matrix
 
 
@@ -275,7 +298,14 @@ def _transform(path: str, value: object) -> np.ndarray:
     steps = [_step(f"{path}[{i}]", step) for i, step in enumerate(_array(path, value))]
     if not steps:
         return np.eye(4)
-    return functools.reduce(lambda world_from_model, step: step @ world_from_model, steps)
+    with np.errstate(all="ignore"):  # an overflowing product is caught just below
+        matrix = functools.reduce(lambda world_from_model, step: step @ world_from_model, steps)
+    try:
+        check_modeling_matrix(matrix)
+    except ValueError as error:
+        composed = f"{path} (the product of its steps)"
+        raise ValueError(str(error).replace("'world_from_model'", composed, 1)) from None
+    return matrix
 
 
 _INLINE_MESH = ("normals", "smooth", "closed", "face_materials", "vertex_materials", "materials")
@@ -425,14 +455,58 @@ def scene_from_dict(data: Mapping, base_dir: str | os.PathLike | None = None) ->
     return _build("", Scene, **kwargs)
 
 
+def _check_depth(text: str, where: str) -> None:
+    """Refuse JSON nested deeper than `MAX_DEPTH` before parsing it (the parser recurses)."""
+    outside_strings = re.sub(r'"(?:[^"\\]|\\.)*"?', "", text)
+    brackets = np.frombuffer(re.sub(r"[^\[\]{}]+", "", outside_strings).encode(), np.uint8)
+    opening = (brackets == ord("[")) | (brackets == ord("{"))
+    depth = int(np.cumsum(np.where(opening, 1, -1).astype(np.int32)).max(initial=0))
+    if depth > MAX_DEPTH:
+        raise ValueError(
+            f"{where}: JSON nested {depth} deep; a scene file may nest at most {MAX_DEPTH} deep"
+        )
+
+
+def _parse_int(literal: str) -> int:
+    if len(literal.lstrip("-")) > MAX_INTEGER_DIGITS:
+        raise ValueError(
+            f"an integer literal of {len(literal.lstrip('-'))} digits is beyond float64 "
+            f"(at most {MAX_INTEGER_DIGITS} digits are read)"
+        )
+    return int(literal)
+
+
+def read_json(path: str | os.PathLike) -> object:
+    """Parse a JSON file, bounded: `scanviz.limits.read_bounded`, `MAX_DEPTH`, `MAX_INTEGER_DIGITS`.
+
+    Raises ValueError (naming the file) for text that is not UTF-8 or not
+    JSON, nests too deep or holds an over-long integer; OSError if unreadable.
+    """
+    text = read_bounded(path)
+    _check_depth(text, str(path))
+    try:
+        return json.loads(text, parse_int=_parse_int)
+    except json.JSONDecodeError as error:
+        raise ValueError(f"{path}: not valid JSON: {error}") from None
+    except ValueError as error:  # from _parse_int
+        raise ValueError(f"{path}: {error}") from None
+
+
+def is_obj_path(source: object) -> bool:
+    """Whether `source` names an OBJ file: a path ending in ``.obj``, in any case."""
+    return isinstance(source, str | os.PathLike) and os.fspath(source).lower().endswith(_OBJ_SUFFIX)
+
+
 def load_scene(source: str | os.PathLike | Mapping) -> Scene:
-    """Load a scene from a JSON file, a parsed JSON dict, or ``"builtin:NAME"``.
+    """Load a scene from a JSON file, an OBJ model, a parsed JSON dict, or ``"builtin:NAME"``.
 
     Parameters
     ----------
     source : str, path-like or Mapping
         ``"builtin:NAME"`` for `scanviz.scene.builtin_scene` (NAME in
-        `scanviz.scene.BUILTIN_SCENES`); a Mapping for `scene_from_dict`;
+        `scanviz.scene.BUILTIN_SCENES`); a Mapping for `scene_from_dict`; a
+        path ending in ``.obj`` (any case) for an OBJ model, framed by
+        `frame_model` (camera, lights and a neutral material chosen for it);
         otherwise the path of a JSON file, whose directory relative
         ``"obj"`` paths start from.
 
@@ -443,8 +517,10 @@ def load_scene(source: str | os.PathLike | Mapping) -> Scene:
     Raises
     ------
     ValueError, TypeError
-        As `scene_from_dict`, the message prefixed with the file name; also
-        for a file that is not valid JSON.
+        As `scene_from_dict` or `load_obj`, the message prefixed with the file
+        name; also for a file that is not UTF-8, not valid JSON, nested deeper
+        than `MAX_DEPTH`, or larger than the file limit
+        (`scanviz.limits.read_bounded`).
     OSError
         If a file cannot be read.
 
@@ -460,10 +536,9 @@ def load_scene(source: str | os.PathLike | Mapping) -> Scene:
     if not isinstance(source, str | os.PathLike):
         raise TypeError(f"'source' must be a path, a dict or 'builtin:NAME'; got {_kind(source)}")
     path = Path(source)
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as error:
-        raise ValueError(f"{path}: not valid JSON: {error}") from None
+    if is_obj_path(path):
+        return frame_model(load_obj(path), name=path.stem)
+    data = read_json(path)
     try:
         return scene_from_dict(data, base_dir=path.parent)
     except (ValueError, TypeError) as error:

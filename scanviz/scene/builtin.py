@@ -13,7 +13,10 @@ BUILTIN_SCENES : Mapping[str, BuiltinScene]
 BUILTIN_MESHES : Mapping[str, callable]
     The mesh generators `box`, `icosphere`, `terrain`, `torus` and
     `uv_sphere` by name, as JSON scenes refer to them. `function_surface_mesh`
-    takes a Python function, so it is not among them.
+    takes a Python function, so it is not among them. Every generator
+    estimates its memory from its parameters first (about 400 bytes per face
+    and 150 per vertex) and raises `scanviz.limits.ResourceLimitError` (a
+    ValueError) over the memory limit, before allocating anything.
 
 Notes
 -----
@@ -70,7 +73,9 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .model import Camera, Light, Material, Mesh, Scene, SceneObject
+from ..limits import check_memory
+from ..vectors import unit_vectors
+from .model import WORLD_LIMIT, Camera, Light, Material, Mesh, Scene, SceneObject
 
 # --- argument checks ---------------------------------------------------------------------
 
@@ -83,12 +88,27 @@ def _count(name: str, value: object, low: int, high: int) -> int:
     return int(value)
 
 
-def _positive(name: str, value: object) -> float:
+def _positive(name: str, value: object, high: float = math.inf) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name!r} must be a number; got {value!r}")
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name!r} must be finite and > 0; got {value}")
+    if not (math.isfinite(value) and 0 < value <= high):
+        rule = "finite and > 0" if high == math.inf else f"> 0 and <= {high:g}"
+        raise ValueError(f"{name!r} must be {rule}; got {value}")
     return float(value)
+
+
+# Peak bytes while a generator builds its Mesh, measured with tracemalloc (torus, uv_sphere,
+# terrain, icosphere at ~100,000 faces: 440-520 B per face with as many vertices as faces).
+_BYTES_PER_FACE = 400  # the per-face index arrays (one numpy array each) and the flat corners
+_BYTES_PER_VERTEX = 150  # positions, normals and the generator's temporaries
+
+
+def _check_mesh_memory(generator: str, vertices: int, faces: int) -> None:
+    """Refuse, before allocating, a mesh whose estimated size is over the memory limit."""
+    check_memory(
+        _BYTES_PER_FACE * faces + _BYTES_PER_VERTEX * vertices,
+        f"{generator} with {vertices:,} vertices and {faces:,} faces",
+    )
 
 
 def _grid_faces(rows: int, columns: int, *, wrap_columns: bool = False) -> np.ndarray:
@@ -138,6 +158,7 @@ def uv_sphere(n_lat: int = 16, n_lon: int = 32) -> Mesh:
     """
     n_lat = _count("n_lat", n_lat, 2, 4096)
     n_lon = _count("n_lon", n_lon, 3, 4096)
+    _check_mesh_memory("uv_sphere", (n_lat - 1) * n_lon + 2, n_lat * n_lon)
     polar = np.pi * np.arange(1, n_lat) / n_lat  # angle from +y, rings only
     azimuth = 2 * np.pi * np.arange(n_lon) / n_lon  # counter-clockwise seen from +y
     ring_radius = np.sin(polar)[:, None]
@@ -205,13 +226,13 @@ def icosphere(level: int = 3) -> Mesh:
     True
     """
     level = _count("level", level, 0, 8)
-    positions = _ICOSAHEDRON_POSITIONS / np.linalg.norm(_ICOSAHEDRON_POSITIONS, axis=1)[:, None]
+    _check_mesh_memory("icosphere", 10 * 4**level + 2, 20 * 4**level)
+    positions = unit_vectors(_ICOSAHEDRON_POSITIONS)
     faces = _ICOSAHEDRON_FACES
     for _ in range(level):
         edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
         unique, inverse = np.unique(edges, axis=0, return_inverse=True)
-        midpoints = positions[unique].sum(axis=1)
-        midpoints /= np.linalg.norm(midpoints, axis=1)[:, None]
+        midpoints = unit_vectors(positions[unique].sum(axis=1))
         ab, bc, ca = (len(positions) + inverse.reshape(-1, 3)).T
         a, b, c = faces.T
         faces = np.array([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]])
@@ -226,7 +247,8 @@ def box(size: float | tuple[float, float, float] = 2.0) -> Mesh:
     Parameters
     ----------
     size : float or (3,) tuple of float
-        Edge length, or the lengths along x, y, z; each > 0.
+        Edge length, or the lengths along x, y, z; each > 0 and <= 2e99, so the
+        corners stay within the world coordinate limit (`scanviz.scene.model.WORLD_LIMIT`).
 
     Returns
     -------
@@ -242,7 +264,7 @@ def box(size: float | tuple[float, float, float] = 2.0) -> Mesh:
     sizes = size if isinstance(size, tuple | list) else (size, size, size)
     if len(sizes) != 3:
         raise ValueError(f"'size' must be a number or 3 numbers; got {size!r}")
-    half = np.array([_positive("size", s) for s in sizes]) / 2
+    half = np.array([_positive("size", s, 2 * WORLD_LIMIT) for s in sizes]) / 2
     corners = np.array([(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)], float)
     faces = (
         (0, 2, 3, 1),  # -z
@@ -263,7 +285,8 @@ def torus(
     Parameters
     ----------
     major_radius, minor_radius : float
-        Radii of the centre circle and of the tube, both > 0.
+        Radii of the centre circle and of the tube, both > 0 and <= 5e98 (so the
+        torus stays within the world coordinate limit).
     n_major, n_minor : int
         Segments around the centre circle and around the tube, each >= 3.
 
@@ -279,10 +302,11 @@ def torus(
     >>> mesh.face_count, float(mesh.positions[:, 0].max())
     (32, 2.5)
     """
-    major_radius = _positive("major_radius", major_radius)
-    minor_radius = _positive("minor_radius", minor_radius)
+    major_radius = _positive("major_radius", major_radius, WORLD_LIMIT / 2)
+    minor_radius = _positive("minor_radius", minor_radius, WORLD_LIMIT / 2)
     n_major = _count("n_major", n_major, 3, 4096)
     n_minor = _count("n_minor", n_minor, 3, 4096)
+    _check_mesh_memory("torus", n_major * n_minor, n_major * n_minor)
     around = 2 * np.pi * np.arange(n_major) / n_major  # counter-clockwise seen from +y
     tube = 2 * np.pi * np.arange(n_minor) / n_minor
     u, v = np.meshgrid(around, tube)  # rows: tube angle, columns: around the axis
@@ -334,6 +358,7 @@ def function_surface_mesh(
     if not callable(func):
         raise TypeError(f"'func' must be callable; got {func!r}")
     n = _count("n", n, 1, 4096)
+    _check_mesh_memory("function_surface_mesh", (n + 1) ** 2, 2 * n * n)
     axes = []
     for name, (low, high) in (("xrange", xrange), ("yrange", yrange)):
         if not (math.isfinite(low) and math.isfinite(high) and low < high):
@@ -421,6 +446,8 @@ def terrain(n: int = 160, seed: int = 0, roughness: float = 0.5) -> Mesh:
     True
     """
     n = _count("n", n, 1, 2048)
+    grid = 2 ** max(1, math.ceil(math.log2(n))) + 1  # diamond-square works on a (2**k + 1)^2 grid
+    _check_mesh_memory("terrain", max((n + 1) ** 2, grid**2), 2 * n * n)
     seed = _count("seed", seed, 0, 2**63 - 1)
     roughness = _positive("roughness", roughness)
     if roughness > 1:

@@ -44,6 +44,7 @@ import numpy as np
 from ..conventions import DEFAULT_SUBPIXEL_BITS, check_raster_size, check_subpixel_bits
 from ..scene import Camera
 from ..trace.events import VerticesTransformed
+from ..vectors import unit_vectors
 from ._checks import as_points, check_camera, check_tracer
 
 STAGES = ("world", "eye", "clip", "ndc", "display", "image")
@@ -72,10 +73,9 @@ def eye_from_world(camera: Camera) -> np.ndarray:
     """
     camera = check_camera(camera)
     eye = np.array(camera.eye)
-    forward = np.subtract(camera.look_at, eye)
-    forward /= np.linalg.norm(forward)
-    right = np.cross(forward, camera.up)
-    right /= np.linalg.norm(right)
+    # Unit vectors by scaling first: lengths near 1e-300 or 1e300 neither underflow nor overflow.
+    forward, up = unit_vectors(np.array([np.subtract(camera.look_at, eye), camera.up]))
+    right = unit_vectors(np.cross(forward, up))
     up = np.cross(right, forward)  # unit: right and forward are orthonormal
     matrix = np.eye(4)
     matrix[:3, :3] = right, up, -forward  # the camera looks down -z

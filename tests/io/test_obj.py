@@ -186,3 +186,60 @@ def test_files(tmp_path):
 def test_errors_name_the_line(text, rule):
     with pytest.raises(ValueError, match=rule):
         load_obj(text)
+
+
+# --- issue 8 -------------------------------------------------------------------------------
+
+TRIANGLE = "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+
+
+@pytest.mark.parametrize("length", [1e-200, 1e200, 1e-320, 1e308])
+def test_issue8_d5_normals_of_any_finite_length_are_normalized(length):
+    mesh = load_obj(TRIANGLE + f"vn {length} {length} {length}\nf 1//1 2//1 3//1\n")
+    assert np.allclose(mesh.normals, 3**-0.5, rtol=1e-15)
+
+
+def test_issue8_d11_a_real_file_with_bom_crlf_and_ignored_statements(tmp_path):
+    text = (
+        "\ufeff# exported\r\nmtllib scene.mtl\r\no cube\r\ng side\r\nusemtl red\r\ns 1\r\n"
+        "v 0 0 0\r\nv 1 0 0\r\nv 1 1 \\\r\n  0\r\nv 0 1 0\r\nvt 0 0\r\nvt 1 0 0\r\nvp 0.5\r\n"
+        "vn 0 0 2\r\nf 1/1/1 2/2/1 3/1/1 4/2/1 # a quad\r\nl 1 2\r\ns off\r\n"
+    )
+    path = tmp_path / "cube.obj"
+    path.write_bytes(text.encode("utf-8"))
+    for mesh in (load_obj(path), load_obj(text)):
+        assert faces(mesh) == [[0, 1, 2, 3]]
+        assert mesh.positions.tolist() == [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+        assert mesh.normals.tolist() == [[0, 0, 1]] * 4
+
+
+def test_issue8_d11_file_errors_name_the_file(tmp_path):
+    path = tmp_path / "latin1.obj"
+    path.write_bytes(b"# caf\xe9\nv 0 0 0\n")
+    with pytest.raises(ValueError, match=r"latin1.obj' is not UTF-8 text: byte 5 is 0xe9"):
+        load_obj(path)
+    empty = tmp_path / "empty.obj"
+    empty.write_text("")
+    assert load_obj(empty).positions.shape == (0, 3) and load_obj(empty).faces == ()
+
+
+def test_issue8_d13_frame_model_shows_the_whole_model_filling_the_view():
+    from scanviz.io import frame_model
+    from scanviz.pipeline import render
+    from scanviz.transform import vertex_tables
+
+    mesh = load_obj(TRIANGLE + "v 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    for aspect, (width, height) in ((1.0, (64, 64)), (2.0, (128, 64)), (0.5, (32, 64))):
+        scene = frame_model(mesh, aspect=aspect, name="tetra")
+        camera = scene.camera
+        assert camera.projection == "perspective" and camera.look_at == (0.5, 0.5, 0.5)
+        display = vertex_tables(camera, mesh.positions, width, height)["display"]
+        assert (display[:, 0] > 0).all() and (display[:, 0] < width).all()
+        assert (display[:, 1] > 0).all() and (display[:, 1] < height).all()
+        # The bounding sphere (radius sqrt(3)/2) spans 1 / 1.1 of the smaller side.
+        distance = np.linalg.norm(np.subtract(camera.eye, camera.look_at))
+        assert distance == pytest.approx(1.1 * 3**0.5 / 2 / np.sin(np.radians(20)))
+        image = render(scene, width, height).image
+        covered = (image != np.array(scene.background)).any(axis=2)
+        assert covered.any() and not (covered[0].any() or covered[-1].any())
+        assert not (covered[:, 0].any() or covered[:, -1].any())

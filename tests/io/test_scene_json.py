@@ -80,7 +80,7 @@ def test_a_scene_using_every_field_round_trips_exactly():
     scene = Scene(
         (
             SceneObject(mesh, Material(exponent=7.5, transparency=1 / 3), rotation, "odd"),
-            SceneObject(Mesh([[0, 0, 0], [1e-300, 0, 0], [0, 1e300, 0]], [[2, 1, 0]])),
+            SceneObject(Mesh([[0, 0, 0], [1e-300, 0, 0], [0, 1e11, 0]], [[2, 1, 0]])),
         ),
         Camera(
             eye=(0.1, 0.2, 0.3),
@@ -265,7 +265,7 @@ ERROR_CASES = {
     "direction on point light": (setter(("lights", 0, "direction"), [0, 0, 1]), ValueError, "lights[0] has an unknown key 'direction'; allowed keys: color, kind, position"),
     "diffuse out of range": (setter(("objects", 2, "material"), {"diffuse": 1.5}), ValueError, "objects[2].material.diffuse must be in [0.0, 1.0]; got 1.5"),
     "color out of range": (setter(("objects", 1, "material"), {"color": [1, 2, 0]}), ValueError, "objects[1].material.color components must be in [0, 1]; got (1.0, 2.0, 0.0)"),
-    "negative exponent": (setter(("materials", "brass", "exponent"), -1), ValueError, "materials.brass.exponent must be in [0.0, inf]; got -1.0"),
+    "negative exponent": (setter(("materials", "brass", "exponent"), -1), ValueError, "materials.brass.exponent must be in [0.0, 10000.0]; got -1.0"),
     "transparency type": (setter(("objects", 0, "material"), {"transparency": "half"}), TypeError, "objects[0].material.transparency must be a number; got 'half'"),
     "boolean number": (setter(("objects", 0, "material"), {"specular": True}), TypeError, "objects[0].material.specular must be a number; got True"),
     "unknown palette name": (setter(("objects", 2, "material"), "gren"), ValueError, "objects[2].material names an unknown material 'gren'; known: brass, glass"),
@@ -280,12 +280,12 @@ ERROR_CASES = {
     "up parallel": (setter(("camera", "up"), [0, 0, 1]), ValueError, "camera.up (0.0, 0.0, 1.0) must not be parallel to the view direction (0.0, 0.0, -5.0)"),
     "eye at look_at": (setter(("camera", "look_at"), [0, 0, 5]), ValueError, "camera.look_at must differ from 'eye'"),
     "near >= far": (setter(("camera", "near"), 200), ValueError, "camera.near must be < 'far'; got near=200.0, far=100.0"),
-    "near zero": (setter(("camera", "near"), 0), ValueError, "camera.near must be > 0 for a perspective camera; got 0.0"),
+    "near zero": (setter(("camera", "near"), 0), ValueError, "camera.near must be > 0 for a perspective camera (at least 1e-99); got 0.0"),
     "empty window": (setter(("camera", "window"), [1, -1, -1, 1]), ValueError, "camera.window must have left < right and bottom < top; got (1.0, -1.0, -1.0, 1.0)"),
     "flat window": (setter(("camera", "window"), [-1, 1, 1, 1]), ValueError, "camera.window must have left < right and bottom < top"),
     "projection": (setter(("camera", "projection"), "fisheye"), ValueError, "camera.projection must be 'perspective' or 'orthographic'; got 'fisheye'"),
     "light kind": (setter(("lights", 0, "kind"), "spot"), ValueError, "lights[0].kind must be 'point' or 'directional'; got 'spot'"),
-    "light color": (setter(("lights", 0, "color"), [-1, 0, 0]), ValueError, "lights[0].color components must be >= 0; got (-1.0, 0.0, 0.0)"),
+    "light color": (setter(("lights", 0, "color"), [-1, 0, 0]), ValueError, "lights[0].color components must be >= 0 and <= 1e+06; got (-1.0, 0.0, 0.0)"),
     "zero direction": (setter(("lights", 0), {"kind": "directional", "direction": [0, 0, 0]}), ValueError, "lights[0].direction must not be the zero vector"),
     "lights not array": (setter(("lights",), {}), TypeError, "lights must be an array; got an object"),
     "ambient range": (setter(("ambient",), [2, 0, 0]), ValueError, "ambient components must be in [0, 1]; got (2.0, 0.0, 0.0)"),
@@ -320,7 +320,7 @@ ERROR_CASES = {
     "matrix rows": (setter(("objects", 1, "transform"), [{"matrix": [[1, 0, 0, 0]] * 3}]), ValueError, "objects[1].transform[0].matrix must have 4 rows; got 3"),
     "empty step": (setter(("objects", 1, "transform"), [{}]), ValueError, "objects[1].transform[0] must have exactly one key"),
     "step not object": (setter(("objects", 1, "transform"), [[1, 2, 3]]), TypeError, "objects[1].transform[0] must be an object; got an array"),
-    "matrix singular": (setter(("objects", 1, "transform"), [{"matrix": [[1, 0, 0, 0]] * 4}]), ValueError, "objects[1].transform[0].matrix must have an invertible upper-left 3x3 block"),
+    "matrix singular": (setter(("objects", 1, "transform"), [{"matrix": [[1, 0, 0, 0]] * 3 + [[0, 0, 0, 1]]}]), ValueError, "objects[1].transform[0].matrix 3x3 block must be invertible"),
 }  # fmt: skip
 
 
@@ -346,3 +346,81 @@ def test_input_is_not_modified():
     before = copy.deepcopy(data)
     scene_from_dict(data)
     assert data == before
+
+
+# --- issue 8 -------------------------------------------------------------------------------
+
+CAMERA = {"eye": [0, 0, 5], "look_at": [0, 0, 0]}
+
+
+def one_object(**obj):
+    return {"camera": CAMERA, "lights": [], "objects": [{"mesh": {"builtin_mesh": "box"}} | obj]}
+
+
+@pytest.mark.parametrize(
+    "data, message",
+    [
+        (one_object(transform=[{"scale": 1e200}]), "objects[0].transform[0].scale factors must have magnitudes in [1e-100, 1e+100]"),
+        (one_object(transform=[{"scale": 1e90}, {"scale": 1e90}]), "objects[0].transform (the product of its steps) 3x3 entries must be within +-1e+100"),
+        (one_object(transform=[{"translate": [0, 0, 1e200]}]), "objects[0].transform[0].translate must be within +-1e+99"),
+        (one_object(transform=[{"scale": 2e98}, {"translate": [0, 0, 9e98]}]), "objects[0]: mesh position 4 [-1.0, -1.0, 1.0] lands at world [-2e+98, -2e+98, 1.1"),
+        (one_object(transform=[{"translate": [0, 0, -1e13]}]), "objects[0] mesh position 0 is 1e+13 from the eye, more than 1e+12 times 1"),
+        (one_object(material={"exponent": 1e308}), "objects[0].material.exponent must be in [0.0, 10000.0]; got 1e+308"),
+        ({"camera": CAMERA | {"window": [0, 5e-324, 0, 5e-324]}, "lights": [], "objects": []}, "camera.window width must be at least 1e-12"),
+        ({"camera": CAMERA, "lights": [{"kind": "point", "position": [0, 0, 1e308]}], "objects": []}, "lights[0].position components must be within +-1e+99"),
+        ({"camera": CAMERA | {"eye": [0, 0, 10**400]}, "lights": [], "objects": []}, "camera.eye[2] must be finite"),
+    ],
+)  # fmt: skip
+def test_issue8_d3_limits_are_checked_at_the_json_path(data, message):
+    with pytest.raises(ValueError) as raised:
+        scene_from_dict(data)
+    assert str(raised.value).startswith(message), str(raised.value)
+
+
+def test_issue8_d5_a_huge_rotation_axis_is_a_rotation():
+    data = one_object(transform=[{"rotate": {"axis": [1e308, 1e308, 0], "degrees": 180}}])
+    matrix = scene_from_dict(data).objects[0].world_from_model
+    assert np.allclose(matrix[:3, :3], [[0, 1, 0], [1, 0, 0], [0, 0, -1]], atol=1e-15)
+
+
+@pytest.mark.parametrize("depth", [65, 5000, 100_000])
+def test_issue8_d6_deep_json_is_refused_before_parsing(tmp_path, depth):
+    path = tmp_path / "deep.json"
+    path.write_text('{"camera": ' + "[" * depth + "]" * depth + ', "s": "[[[[[["}')
+    with pytest.raises(
+        ValueError, match=rf"deep.json: JSON nested {depth + 1} deep; .* at most 64"
+    ):
+        load_scene(path)
+    path.write_text(
+        '{"name": "'
+        + "[" * depth
+        + '", "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "lights": [], "objects": []}'
+    )
+    assert load_scene(path).name == "[" * depth  # brackets inside strings do not count
+
+
+def test_issue8_d11_file_errors_name_the_file(tmp_path):
+    path = tmp_path / "scene.json"
+    path.write_bytes(b'{"name": "caf\xe9"}')
+    with pytest.raises(ValueError, match=r"scene.json' is not UTF-8 text: byte 13 is 0xe9"):
+        load_scene(path)
+    path.write_text('{"version": ' + "1" * 5000 + "}")
+    with pytest.raises(
+        ValueError, match=r"scene.json: an integer literal of 5000 digits is beyond"
+    ):
+        load_scene(path)
+
+
+def test_issue8_d11_an_empty_inline_mesh_loads():
+    data = {"camera": CAMERA, "lights": [], "objects": [{"mesh": {"positions": [], "faces": []}}]}
+    assert scene_from_dict(data).objects[0].mesh.positions.shape == (0, 3)
+
+
+@pytest.mark.parametrize("name", ["model.obj", "MODEL.OBJ", "Model.Obj"])
+def test_issue8_d13_load_scene_frames_an_obj_file(tmp_path, name):
+    path = tmp_path / name
+    path.write_text("v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n")
+    scene = load_scene(path)
+    assert scene.objects[0].mesh.positions[1].tolist() == [2, 0, 0]
+    assert scene.camera.look_at == (1.0, 1.0, 0.0) and scene.lights and scene.name == path.stem
+    assert scene.objects[0].material == Material()

@@ -249,9 +249,9 @@ def test_terrain_is_deterministic_and_sized():
         (lambda: icosphere(True), TypeError, "'level' must be an int"),
         (lambda: uv_sphere(1, 8), ValueError, "'n_lat' must be in 2..4096"),
         (lambda: uv_sphere(4, 2), ValueError, "'n_lon' must be in 3..4096"),
-        (lambda: box(0), ValueError, "'size' must be finite and > 0"),
+        (lambda: box(0), ValueError, "'size' must be > 0 and <= 2e\\+99"),
         (lambda: box((1, 2)), ValueError, "'size' must be a number or 3 numbers"),
-        (lambda: torus(minor_radius=-1), ValueError, "'minor_radius' must be finite and > 0"),
+        (lambda: torus(minor_radius=-1), ValueError, "'minor_radius' must be > 0 and <= 5e\\+98"),
         (lambda: terrain(0), ValueError, "'n' must be in 1..2048"),
         (lambda: terrain(4, roughness=2), ValueError, r"'roughness' must be in \(0, 1\]"),
     ],
@@ -264,3 +264,41 @@ def test_generator_arguments_are_checked(call, error, rule):
 def test_builtin_meshes_registry():
     assert sorted(BUILTIN_MESHES) == ["box", "icosphere", "terrain", "torus", "uv_sphere"]
     assert BUILTIN_MESHES["icosphere"] is icosphere
+
+
+@pytest.mark.parametrize(
+    "generator, kwargs",
+    [
+        (torus, {"n_major": 4096, "n_minor": 4096}),
+        (uv_sphere, {"n_lat": 4096, "n_lon": 4096}),
+        (terrain, {"n": 2048}),
+        (icosphere, {"level": 8}),
+    ],
+)
+def test_issue8_d7_generators_refuse_over_the_memory_limit_before_allocating(generator, kwargs):
+    import tracemalloc
+
+    from scanviz.limits import ResourceLimitError, memory_limit
+
+    tracemalloc.start()
+    try:
+        with memory_limit("64M"), pytest.raises(ResourceLimitError, match="over the memory limit"):
+            generator(**kwargs)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 2**20  # refused from the parameters alone
+
+
+def test_issue8_d7_the_estimate_covers_the_measured_peak():
+    import tracemalloc
+
+    from scanviz.limits import memory_limit
+
+    for build in (lambda: torus(n_major=200, n_minor=100), lambda: terrain(128)):
+        tracemalloc.start()
+        build()
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        with memory_limit(int(peak * 0.8)), pytest.raises(ValueError, match="over the memory"):
+            build()  # a limit below the real peak is refused

@@ -116,3 +116,103 @@ def test_scene_counts_triangles_and_checks_colors():
     assert scene.triangle_count() == 4 and isinstance(scene.objects, tuple)
     with pytest.raises(ValueError, match=r"'background' components must be in \[0, 1\]"):
         Scene((), background=(0, 0, 2))
+
+
+# --- issue 8 -------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "build, rule",
+    [
+        (lambda: Material(exponent=1e308), r"'exponent' must be in \[0.0, 10000.0\]; got 1e\+308"),
+        (lambda: Material(fudge=1e200), r"'fudge' must be in \[0.0, 1e\+99\]"),
+        (lambda: Light("point", position=(0, 0, 1e308)), r"'position' components must be within"),
+        (lambda: Light(color=(1e7, 0, 0)), r"'color' components must be >= 0 and <= 1e\+06"),
+        (lambda: Camera(eye=(0, 0, 1e300)), r"'eye' components must be within \+-1e\+99"),
+        (lambda: Camera(window=(0, 5e-324, 0, 5e-324)), r"'window' width must be at least 1e-12"),
+        (
+            lambda: Camera(window=(1e20, 1e20 + 1e7, -1, 1)),
+            r"'window' width must be at least 1e\+08",
+        ),
+        (lambda: Camera(near=1e-200), r"'near' must be > 0 for a perspective camera \(at least"),
+        (lambda: Camera(near=1.0, far=1.0 + 1e-15), r"'far' - 'near' must be at least"),
+        (
+            lambda: SceneObject(
+                Mesh(TRIANGLE, [[0, 1, 2]]), world_from_model=np.diag([1e150] * 3 + [1])
+            ),
+            r"'world_from_model' 3x3 entries must be within \+-1e\+100",
+        ),
+        (
+            lambda: SceneObject(
+                Mesh(TRIANGLE, [[0, 1, 2]]), world_from_model=np.diag([1e-150] * 3 + [1])
+            ),
+            r"'world_from_model' 3x3 block must be invertible with inverse entries within",
+        ),
+        (
+            lambda: SceneObject(
+                Mesh([[0, 0, 0], [1e200, 0, 0], [0, 1, 0]], [[0, 1, 2]]), name="far"
+            ),
+            r"mesh position 1 of object 'far' \[1e\+200, 0.0, 0.0\] lands at world .* limit \+-1e\+99",
+        ),
+        (
+            lambda: SceneObject(Mesh(TRIANGLE, [[0, 1, 2]]), world_from_model=[[1, 0, 0, 0]] * 4),
+            r"'world_from_model' must be affine, bottom row \(0, 0, 0, 1\)",
+        ),
+        (
+            lambda: Scene([SceneObject(Mesh([[0, 0, 0], [1e14, 0, 0], [0, 1, 0]], [[0, 1, 2]]))]),
+            r"'objects\[0\]' mesh position 1 is 1e\+14 from the eye, more than 1e\+12 times 1",
+        ),
+    ],
+)
+def test_issue8_d3_finite_values_beyond_the_limits_name_the_field_and_rule(build, rule):
+    with pytest.raises(ValueError, match=rule):
+        build()
+
+
+def test_issue8_d3_scenes_at_the_limits_render_without_nan():
+    from scanviz.pipeline import render
+
+    limit = 1e99
+    mesh = Mesh(
+        [[-limit, -limit, -limit], [limit, -limit, -limit], [0, limit, -limit]], [[0, 1, 2]]
+    )
+    lights = (
+        Light("point", position=(limit, limit, limit), color=(1e6, 1e6, 1e6)),
+        Light(direction=(1e-300, 0, -1e-300)),
+    )
+    cameras = (
+        Camera(eye=(0, 0, limit), window=(-1e88, 1e88, -1e88, 1e88), near=1e88, far=np.inf),
+        Camera(eye=(0, 0, limit), near=-limit, far=limit, window=(-limit, limit, -limit, limit),
+               projection="orthographic"),
+    )  # fmt: skip
+    for camera in cameras:
+        scene = Scene(
+            [SceneObject(replace_closed(mesh), Material(exponent=1e4, fudge=1e99))], camera, lights
+        )
+        for shading in ("flat", "gouraud", "phong", "gooch"):
+            for visibility in ("zbuffer", "abuffer"):
+                image = render(scene, 8, 8, shading=shading, visibility=visibility).image
+                assert np.isfinite(image).all(), (camera.projection, shading, visibility)
+
+
+def replace_closed(mesh):
+    return Mesh(mesh.positions, mesh.faces, closed=False)
+
+
+def test_issue8_d5_camera_lengths_neither_overflow_nor_underflow():
+    Camera(eye=(0, 0, 1e99), look_at=(0, 0, 0))  # |view| = 1e99: not "parallel"
+    Camera(up=(0, 1e-300, 0))
+    Camera(eye=(1e99, 0, 0), look_at=(-1e99, 0, 0))
+    with pytest.raises(ValueError, match="must not be parallel"):
+        Camera(up=(0, 0, 1e-300))
+
+
+def test_issue8_d11_an_empty_mesh_is_valid_and_renders_as_nothing():
+    from scanviz.pipeline import render
+
+    mesh = Mesh([], [])
+    assert mesh.positions.shape == (0, 3) and mesh.faces == ()
+    image = render(Scene([SceneObject(mesh)], background=(0.25, 0.5, 1)), 4, 4).image
+    assert (image == np.array([0.25, 0.5, 1])).all()
+    with pytest.raises(ValueError, match=r"'positions' must be an \(N, 3\) array"):
+        Mesh([[]], [])

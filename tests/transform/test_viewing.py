@@ -231,3 +231,22 @@ def test_transform_vertices_emits_one_event_per_stage():
 def test_bad_arguments_raise_naming_the_argument(call, error, message):
     with pytest.raises(error, match=message):
         call()
+
+
+@pytest.mark.parametrize(
+    "camera",
+    [
+        Camera(eye=(0, 0, 1e99), look_at=(0, 0, 0), up=(0, 1e-300, 0)),
+        Camera(eye=(0, 0, 1e-95), look_at=(0, 0, 0), up=(0, 1e300, 0), near=1e-98, far=1e-96,
+               window=(-1e-98, 1e-98, -1e-98, 1e-98)),
+        Camera(eye=(1e99, 0, 0), look_at=(-1e99, 0, 0), up=(0, 1e-300, 0)),
+    ],
+)  # fmt: skip
+def test_issue8_d5_eye_from_world_survives_huge_and_tiny_lengths(camera):
+    matrix = eye_from_world(camera)
+    rotation = matrix[:3, :3]
+    assert np.isfinite(matrix).all()
+    assert np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-15)
+    view = np.subtract(camera.look_at, camera.eye)
+    assert np.allclose(rotation @ (view / np.abs(view).max()), [0, 0, -1], atol=1e-15)
+    assert np.allclose(rotation[1], [0, 1, 0], atol=1e-15)  # up stays up
