@@ -25,6 +25,12 @@ Algorithm (one compiled pass, bottom row to top):
    strip height per column (a prefix sum of boundary signs), so shapes that
    miss a pixel leave exactly 0 there.
 
+Work is the strips times the edges of their rows, so it grows with the
+square of the vertices or crossings in one pixel row. Past MAX_WORK edge
+visits a polygon is refused: at once when a lower bound (one strip per
+distinct vertex height and per edge crossing, counted by sorting) already
+exceeds it, else when the kernel gets there.
+
 Rounding: coordinates are float64, so the per-pixel error is a few ulps of
 the coordinate magnitude (about 1e-13 for a 256-pixel raster).
 """
@@ -188,6 +194,102 @@ def _add_strip(row, counts, ax, ay, bx, by, winding, present, n, y_lo, y_hi, mid
 
 
 @njit(cache=True)
+def _update_active(ay, by, active, n_active, next_edge, y):
+    """Active edge table for row y: retire the edges below it, activate those starting in it.
+
+    Returns the new (n_active, next_edge); `active[:n_active]` holds the row's edges.
+    """
+    kept = 0
+    for k in range(n_active):
+        if by[active[k]] > y:
+            active[kept] = active[k]
+            kept += 1
+    n_active = kept
+    while next_edge < len(ay) and ay[next_edge] < y + 1.0:
+        if by[next_edge] > y:
+            active[n_active] = next_edge
+            n_active += 1
+        next_edge += 1
+    return n_active, next_edge
+
+
+@njit(cache=True)
+def _inversions(values, scratch):
+    """Pairs i < j with values[i] > values[j], by a bottom-up merge sort that overwrites both arrays."""
+    n = len(values)
+    inversions = 0
+    run = 1
+    while run < n:
+        for lo in range(0, n, 2 * run):
+            mid, hi = min(lo + run, n), min(lo + 2 * run, n)
+            i, j = lo, mid
+            for k in range(lo, hi):
+                if j < hi and (i == mid or values[j] < values[i]):
+                    scratch[k] = values[j]
+                    inversions += mid - i  # values[j] is below every value left in [i, mid)
+                    j += 1
+                else:
+                    scratch[k] = values[i]
+                    i += 1
+        values, scratch = scratch, values
+        run *= 2
+    return inversions
+
+
+@njit(cache=True)
+def _slab_crossings(ax, ay, bx, by, active, n_active, lo, hi, x_lo, x_hi, scratch):
+    """Crossings strictly inside [lo, hi] of the active edges spanning it: pairs whose x order flips."""
+    n = 0
+    for k in range(n_active):
+        e = active[k]
+        if ay[e] <= lo and by[e] >= hi:
+            x_lo[n] = _x_at(ax[e], ay[e], bx[e], by[e], lo)
+            x_hi[n] = _x_at(ax[e], ay[e], bx[e], by[e], hi)
+            n += 1
+    by_hi = np.argsort(x_hi[:n], kind="mergesort")
+    order = by_hi[np.argsort(x_lo[:n][by_hi], kind="mergesort")]  # by x at lo, ties by x at hi
+    return _inversions(x_hi[:n][order], scratch)
+
+
+@njit(cache=True)
+def _least_work(ax, ay, bx, by, row0, row1, max_work):
+    """A lower bound on the kernel's edge visits in rows [row0, row1); stops past `max_work`.
+
+    The distinct vertex heights inside a row cut it into slabs that every
+    active edge spans or misses; a row has at least one strip per slab plus
+    one per crossing inside a slab (a pair of the slab's edges whose x order
+    at its bottom and top differ), and each strip visits every active edge.
+    O(n log n) per slab; crossings at one shared height count once per pair.
+    """
+    count = len(ay)
+    active = np.empty(count, np.int64)
+    heights = np.empty(2 * count + 2)
+    x_lo, x_hi, scratch = np.empty(count), np.empty(count), np.empty(count)
+    work = 0.0
+    next_edge = n_active = 0
+    for y in range(row0, row1):
+        top = y + 1.0
+        n_active, next_edge = _update_active(ay, by, active, n_active, next_edge, y)
+        heights[0], heights[1] = y, top
+        n_heights = 2
+        for k in range(n_active):
+            for v in (ay[active[k]], by[active[k]]):
+                if y < v < top:
+                    heights[n_heights] = v
+                    n_heights += 1
+        slabs = np.unique(heights[:n_heights])
+        work += n_active * (len(slabs) - 1.0)
+        for j in range(len(slabs) - 1):
+            if work > max_work:
+                return work
+            crossings = _slab_crossings(
+                ax, ay, bx, by, active, n_active, slabs[j], slabs[j + 1], x_lo, x_hi, scratch
+            )
+            work += n_active * float(crossings)
+    return work
+
+
+@njit(cache=True)
 def _coverage_kernel(ax, ay, bx, by, winding, width, height, evenodd, row0, row1, max_work):
     """Exact coverage of rows [row0, row1): ((row1 - row0, width) float64 array, work).
 
@@ -206,18 +308,7 @@ def _coverage_kernel(ax, ay, bx, by, winding, width, height, evenodd, row0, row1
     n_active = 0
     for y in range(row0, row1):
         top = y + 1.0
-        # Active edge table: retire edges below this row, activate those starting in it.
-        kept = 0
-        for k in range(n_active):
-            if by[active[k]] > y:
-                active[kept] = active[k]
-                kept += 1
-        n_active = kept
-        while next_edge < count and ay[next_edge] < top:
-            if by[next_edge] > y:
-                active[n_active] = next_edge
-                n_active += 1
-            next_edge += 1
+        n_active, next_edge = _update_active(ay, by, active, n_active, next_edge, y)
         s = float(y)
         while n_active and s < top:
             # The edges spanning upward from s, and the next vertex height above s.
@@ -267,15 +358,23 @@ def _coverage_rows(polygon, width, height, rule, subpixel_bits, what, extra_byte
         extra_bytes + 8 * (row1 - row0) * width + 8 * width + EDGE_BYTES * len(edges[0]),
         f"{what}: {row1 - row0} rows of {width} float64 areas",
     )
+    # Refuse at once what surely needs too many edge visits; the kernel stops at the rest.
+    least = _least_work(*edges[:4], row0, row1, MAX_WORK)
+    if least > MAX_WORK:
+        raise _too_many_strips(what, len(edges[0]), f"at least {least:.3g}")
     rows, work = _coverage_kernel(*edges, width, height, rule == "evenodd", row0, row1, MAX_WORK)
     if work > MAX_WORK:
-        raise ValueError(
-            f"{what}: the polygon's {len(edges[0])} edges cut its rows into too many strips "
-            f"(over {MAX_WORK} edge visits): every vertex height and "
-            "every crossing of two edges inside a pixel row starts a strip that visits all the "
-            "edges of the row; use fewer vertices or edge crossings per pixel row"
-        )
+        raise _too_many_strips(what, len(edges[0]), f"over {work}")
     return row0, np.clip(rows, 0.0, 1.0, out=rows)
+
+
+def _too_many_strips(what: str, edges: int, visits: str) -> ValueError:
+    return ValueError(
+        f"{what}: the polygon's {edges} edges cut its rows into too many strips "
+        f"({visits} edge visits, limit {MAX_WORK}): every vertex height and "
+        "every crossing of two edges inside a pixel row starts a strip that visits all the "
+        "edges of the row; use fewer vertices or edge crossings per pixel row"
+    )
 
 
 def pixel_areas(
@@ -352,7 +451,10 @@ def area_coverage(
     ValueError
         If `polygon` is malformed (see `Polygon`: shape, non-finite values,
         coordinates beyond +-2**20, fewer than 3 distinct vertices), or an
-        option is unknown or out of range.
+        option is unknown or out of range; or if the polygon needs over
+        2**26 edge visits (its strips times the edges of their rows: many
+        vertices or crossings in one pixel row), refused at once when a lower
+        bound on them already says so.
     scanviz.limits.ResourceLimitError
         (a ValueError) If the output (8 bytes a pixel), the rows the polygon
         reaches (8 bytes a pixel again) and the edges' working memory would

@@ -163,6 +163,15 @@ def triangle_samples(
     Agrees sample for sample with `scan_convert` on the same triangle: both
     apply the ownership rule of DESIGN §2 to the same snapped integers.
 
+    With a tracer, every sample of the clipped bounding box is tested, as the
+    textbook does, and each row's edge function values are recorded. Without
+    one, the fast path skips the samples outside each row's exact x-range:
+    the integer solution of ``orientation * E_i >= bias_i`` for the three
+    edges at that row. It evaluates the same integers at the samples it keeps,
+    so it returns the same samples and bit-identical weights, in time and
+    memory proportional to the covered samples (a sliver across a 65536²
+    box: milliseconds rather than minutes).
+
     Examples
     --------
     >>> cover = triangle_samples([(0, 0), (4, 0), (0, 3)], 5, 4)
@@ -192,7 +201,7 @@ def triangle_samples(
 
 
 def _scan_bbox(snapped, width, height, tracer, polygon):
-    """Test every sample of the clipped bounding box, a block of rows at a time."""
+    """Set up the edge functions and find the samples of the clipped bounding box they cover."""
     scale = snapped.scale
     units = [(int(x), int(y)) for x, y in snapped.units]
     (x0, y0), (x1, y1), (x2, y2) = units
@@ -215,6 +224,16 @@ def _scan_bbox(snapped, width, height, tracer, polygon):
         return _no_samples()
     dtype = _exact_dtype(edges, bbox, scale)
     biases = [0 if e.owns_boundary else 1 for e in edges]
+    if tracer is None:
+        found = _scan_row_ranges(edges, biases, orientation, scale, bbox, dtype, area2)
+    else:
+        found = _scan_blocks(edges, biases, orientation, scale, bbox, dtype, area2, tracer, polygon)
+    return tuple(np.concatenate(part) for part in zip(*found, strict=True))
+
+
+def _scan_blocks(edges, biases, orientation, scale, bbox, dtype, area2, tracer, polygon):
+    """The textbook traversal: test every sample of the box, a block of rows at a time."""
+    x_lo, y_lo, x_hi, y_hi = bbox
     columns = np.arange(x_hi - x_lo, dtype=dtype)[None, :]
     rows_per_block = max(1, BLOCK_SAMPLES // (x_hi - x_lo))
     found = []
@@ -229,12 +248,67 @@ def _scan_bbox(snapped, width, height, tracer, polygon):
         inside = np.logical_and.reduce(
             [orientation * v >= bias for v, bias in zip(values, biases, strict=True)]
         )
-        if tracer is not None:
-            _emit_rows(tracer, polygon, row, x_lo, x_hi, values, inside)
+        _emit_rows(tracer, polygon, row, x_lo, x_hi, values, inside)
         ys, xs = np.nonzero(inside)
-        opposite = np.stack([values[1][inside], values[2][inside], values[0][inside]], axis=1)
-        found.append((ys + row, xs + x_lo, _ratio(opposite, area2)))
-    return tuple(np.concatenate(part) for part in zip(*found, strict=True))
+        selected = [v[inside] for v in values]
+        found.append((ys + row, xs + x_lo, _weights(selected, area2)))
+    return found
+
+
+def _scan_row_ranges(edges, biases, orientation, scale, bbox, dtype, area2):
+    """Evaluate only the samples between each row's exact first and last inside sample.
+
+    The ranges of a block of rows come from the edge functions at the rows'
+    first samples; their samples are then evaluated about BLOCK_SAMPLES at a
+    time, so memory is bounded by the output.
+    """
+    x_lo, y_lo, x_hi, y_hi = bbox
+    found = []
+    for row in range(y_lo, y_hi, BLOCK_SAMPLES):
+        rows = np.arange(row - y_lo, min(row + BLOCK_SAMPLES, y_hi) - y_lo, dtype=dtype)
+        # Each edge function at the rows' first samples, signed to the inner side, less its bias.
+        margins = [
+            orientation * (e.at(x_lo * scale, y_lo * scale) + e.b * scale * rows) - bias
+            for e, bias in zip(edges, biases, strict=True)
+        ]
+        starts, counts = _inside_columns(edges, orientation, scale, margins, x_hi - x_lo)
+        ends = np.cumsum(counts)
+        cuts = np.searchsorted(ends, np.arange(BLOCK_SAMPLES, ends[-1], BLOCK_SAMPLES))
+        for first, last in zip(np.r_[0, cuts], np.r_[cuts, len(rows)], strict=True):
+            part = slice(first, last)
+            found.append(
+                _row_samples(
+                    edges, scale, bbox, dtype, area2, rows[part], starts[part], counts[part]
+                )
+            )
+    return found
+
+
+def _inside_columns(edges, orientation, scale, margins, columns):
+    """Per row, the first column k in 0..columns with margin + step * k >= 0 for all edges, and how many."""
+    starts = np.zeros(len(margins[0]), np.int64)
+    stops = np.full(len(margins[0]), columns, np.int64)
+    for e, margin in zip(edges, margins, strict=True):
+        step = orientation * e.a * scale  # the signed E's change per sample to the right
+        if step > 0:  # inside from ceil(-margin / step) on
+            starts = np.maximum(starts, np.clip(-(margin // step), 0, columns).astype(np.int64))
+        elif step < 0:  # inside up to floor(margin / -step)
+            stops = np.minimum(stops, np.clip(margin // -step + 1, 0, columns).astype(np.int64))
+        else:  # parallel to the rows: the whole row or nothing
+            stops = np.where(margin >= 0, stops, 0)
+    return starts, np.maximum(stops - starts, 0)
+
+
+def _row_samples(edges, scale, bbox, dtype, area2, rows, starts, counts):
+    """The samples of `counts` columns from `starts` on each of `rows` (offsets in the box)."""
+    x_lo, y_lo = bbox[:2]
+    ys = np.repeat(rows, counts)
+    xs = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts - starts, counts)
+    values = [
+        e.at(x_lo * scale, y_lo * scale) + e.a * scale * xs.astype(dtype) + e.b * scale * ys
+        for e in edges
+    ]
+    return ys.astype(np.int64) + y_lo, xs + x_lo, _weights(values, area2)
 
 
 def _most_samples(units, area2: int, scale: int, bbox: tuple[int, int, int, int]) -> int:
@@ -248,6 +322,11 @@ def _most_samples(units, area2: int, scale: int, bbox: tuple[int, int, int, int]
     perimeter = sum(math.dist(pixels[i], pixels[(i + 1) % 3]) for i in range(3))
     lattice = abs(area2) / (2 * scale * scale) + perimeter / 2 + 1
     return int(min((x_hi - x_lo) * (y_hi - y_lo), math.ceil(lattice)))
+
+
+def _weights(values: list[np.ndarray], area2: int) -> np.ndarray:
+    """Barycentric weights from the edge functions at the samples: vertex i's is E_{i+1} / area2."""
+    return _ratio(np.stack([values[1], values[2], values[0]], axis=1), area2)
 
 
 def _ratio(numerators: np.ndarray, denominator: int) -> np.ndarray:

@@ -259,3 +259,37 @@ def test_issue8_d9_non_real_coordinates_are_a_type_error():
     for bad in (7j, "4", True):
         with pytest.raises(TypeError, match=r"contour 0 .* numbers .* vertex 1 holds"):
             area_coverage([(0, 0), (bad, 0), (0, 4)], 8, 8)
+
+
+def test_issue8_d7_a_polygon_needing_too_many_strips_is_refused_before_the_sweep(monkeypatch):
+    # 100,000 edges in one pixel row, nearly all crossed by the closing edge: ~1e10 edge visits.
+    from scanviz.abuffer import area
+
+    def must_not_run(*args):
+        raise AssertionError("the sweep ran before the refusal")
+
+    monkeypatch.setattr(area, "_coverage_kernel", must_not_run)
+    n = 100_000
+    zigzag = Polygon(np.stack([64 * np.arange(n) / n, np.arange(n) % 2], axis=1))
+    message = (
+        r"area_coverage: a 64x1 float64 raster: the polygon's 100000 edges cut its rows into "
+        r"too many strips \(at least 1e\+10 edge visits, limit 67108864\): every vertex height "
+        r"and every crossing of two edges inside a pixel row starts a strip"
+    )
+    with pytest.raises(ValueError, match=message):
+        area_coverage(zigzag, 64, 1, subpixel_bits=None)
+    with pytest.raises(ValueError, match=r"pixel_areas: .*\(at least 1e\+10 edge visits"):
+        pixel_areas(zigzag, 64, 1, subpixel_bits=None)
+
+
+@settings(derandomize=True, max_examples=100, deadline=None)
+@given(random_polygons())
+def test_the_early_refusal_counts_no_more_work_than_the_sweep_does(polygon):
+    # A lower bound: the early refusal never refuses a polygon the sweep would render.
+    from scanviz.abuffer import area
+
+    edges = area._edge_arrays(area.snapped_vertices(polygon, 8), polygon.offsets)
+    row0, row1 = area._row_range(edges[1], edges[3], 10)
+    least = area._least_work(*edges[:4], row0, row1, 2**62)
+    _, work = area._coverage_kernel(*edges, 12, 10, False, row0, row1, 2**62)
+    assert least <= work

@@ -1,5 +1,8 @@
 """Edge-function triangles: golden arrays, the fill-convention probe, and scan_convert as oracle."""
 
+import math
+from fractions import Fraction
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -331,3 +334,72 @@ def test_issue8_d9_types_of_coordinates_and_options_are_checked():
         ValueError, match=r"'triangle' must be a \(3, 2\) array; got shape \(4, 2\)"
     ):
         triangle_samples([*triangle, (1, 1)], 8, 8)
+
+
+@st.composite
+def thin_and_ordinary_triangles(draw):
+    """Three vertices on a 1/64 grid around a 40 x 30 raster; often a sliver along a long edge."""
+    coordinate = st.integers(-8 * 64, 48 * 64).map(lambda k: k / 64)
+    a, b, c = (draw(st.tuples(coordinate, coordinate)) for _ in range(3))
+    if draw(st.booleans()):  # c a few grid steps off a point of the segment ab
+        t = draw(st.sampled_from([0.0, 0.25, 0.5, 1.0]))
+        dx, dy = (draw(st.integers(-3, 3)) / 64 for _ in range(2))
+        c = (a[0] + t * (b[0] - a[0]) + dx, a[1] + t * (b[1] - a[1]) + dy)
+    return [a, b, c]
+
+
+@settings(derandomize=True, max_examples=100, deadline=None)
+@given(
+    triangle=st.one_of(thin_and_ordinary_triangles(), chosen_triangles()),
+    sample=st.sampled_from(SAMPLE_MODES),
+    bits=st.sampled_from(BITS),
+)
+def test_row_range_path_gives_the_bounding_box_paths_samples_bit_for_bit(triangle, sample, bits):
+    options = dict(sample=sample, subpixel_bits=bits)
+    ranged = triangle_samples(triangle, 40, 30, **options)  # untraced: each row's exact x-range
+    boxed = triangle_samples(triangle, 40, 30, trace=Recorder(kinds=["span"]), **options)
+    assert np.array_equal(ranged.ys, boxed.ys) and np.array_equal(ranged.xs, boxed.xs)
+    assert np.array_equal(ranged.barycentric, boxed.barycentric)  # the same floats, bit for bit
+
+
+def _exact_row(vertices, y: int) -> tuple[list[int], list[tuple[Fraction, ...]]]:
+    """Columns of row y covered under DESIGN §2's rule, and their barycentric weights, by Fraction.
+
+    A sample p is inside when p + (eps, eps**2) is strictly on the inner side of
+    every edge: the sign of E(p) + eps * (Y0 - Y1) + eps**2 * (X1 - X0).
+    """
+    v = [(Fraction(x), Fraction(yv)) for x, yv in vertices]
+    area2 = (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0])
+    sign = 1 if area2 > 0 else -1
+
+    def edge(i, px, py):
+        (x0, y0), (x1, y1) = v[i], v[(i + 1) % 3]
+        return (x1 - x0) * (py - y0) - (y1 - y0) * (px - x0), y0 - y1, x1 - x0
+
+    # The row's chord of the triangle, from the edges crossing height y.
+    crossings = [
+        v[i][0] + (y - v[i][1]) * (v[j][0] - v[i][0]) / (v[j][1] - v[i][1])
+        for i, j in ((0, 1), (1, 2), (2, 0))
+        if v[i][1] != v[j][1] and min(v[i][1], v[j][1]) <= y <= max(v[i][1], v[j][1])
+    ]
+    columns, weights = [], []
+    for x in range(math.floor(min(crossings)) - 1, math.ceil(max(crossings)) + 2):
+        terms = [edge(i, Fraction(x), Fraction(y)) for i in range(3)]
+        if all(sign * next(t for t in term if t) > 0 for term in terms):
+            columns.append(x)
+            weights.append((terms[1][0] / area2, terms[2][0] / area2, terms[0][0] / area2))
+    return columns, weights
+
+
+def test_issue8_d7_thin_triangle_in_a_huge_box_is_fast_enough():
+    # A sliver across a 65536² box: testing every sample of its box took minutes.
+    triangle = [(0, 0), (65535, 65535.5), (1, 0)]  # exact on the 1/256 grid: snapping keeps it
+    cover = triangle_samples(triangle, 65536, 65536)
+    assert np.all(np.diff(cover.ys * 65536 + cover.xs) > 0)
+    for y in (0, 1, 2, 777, 30000, 43689, 43690, 43691, 65534, 65535):
+        columns, weights = _exact_row(triangle, y)
+        on_row = cover.ys == y
+        assert cover.xs[on_row].tolist() == columns, y
+        expected = np.array([[float(w) for w in ws] for ws in weights]).reshape(-1, 3)
+        assert np.array_equal(cover.barycentric[on_row], expected), y
+    assert len(_exact_row(triangle, 30000)[0]) == 1  # the oracle sees the sliver's one sample
