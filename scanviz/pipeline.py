@@ -18,14 +18,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
+from .conventions import (
+    COORD_LIMIT,
+    SAMPLE_MODES,
+    check_choice,
+    check_raster_size,
+    check_subpixel_bits,
+)
+from .limits import check_memory
+from .progress import progress
 from .raster.api import as_tracer
 from .scene.faces import FaceCorners, face_corners
 from .scene.model import Scene
 from .shading import face_normals, material_array, vertex_normals
 from .trace import Recorder, Trace
 from .transform import classify, clip_from_eye, clip_polygon, cull_faces, eye_from_world
+from .vectors import unit_vectors
 from .visibility import ScreenPolygons, zbuffer
+from .visibility.zbuffer import VALUE_LIMIT
 
 SHADINGS = ("flat", "gouraud", "phong", "gooch")
 VISIBILITIES = ("zbuffer", "abuffer", "flawed")
@@ -37,6 +47,19 @@ ATTRIBUTES = {
     "phong": 15,
     "gooch": 15,
 }  # phong: normal, position, material
+# What each attribute column is, for messages: (first column, last column + 1, scene field).
+ATTRIBUTE_FIELDS = {
+    "gouraud": ((0, 3, "lit vertex colors"),),
+    "phong": ((0, 3, "normals"), (3, 6, "positions"), (6, 15, "materials")),
+    "gooch": ((0, 3, "normals"), (3, 6, "positions"), (6, 15, "materials")),
+}
+PROGRESS_POLYGONS = 2000  # a-buffer renders of more polygons show a progress bar
+PROGRESS_EDGES = 20000  # feature edges drawn one by one: a bar above this many
+# Bytes per pixel of the buffers a render holds at once (image, depth, ids, their copies), plus
+# 8 per attribute per pixel, plus the shading temporaries of per-pixel shading.
+PIXEL_BYTES = {"zbuffer": 8 * 8, "abuffer": 8 * 16, "flawed": 8 * 16}
+SHADING_BYTES = 8 * 64  # per pixel or fragment shaded by Phong/Gooch: vectors of every light term
+FRAGMENT_BYTES = 8 * 3 * 12  # per a-buffer fragment, held about three times (parts, table, resolve)
 
 
 @dataclass(frozen=True)
@@ -73,6 +96,7 @@ class RenderStats:
     clipped: int = 0
     accepted: int = 0
     polygons_drawn: int = 0
+    fragments_estimated: int = 0
     rows_scanned: int = 0
     spans: int = 0
     fragments: int = 0
@@ -137,14 +161,15 @@ def _object_in_world(obj) -> _ObjectInWorld:
     mesh, matrix = obj.mesh, obj.world_from_model
     world = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
     # A mirroring transform turns counter-clockwise faces clockwise: reverse them back.
-    faces = mesh.faces if np.linalg.det(matrix[:3, :3]) >= 0 else tuple(f[::-1] for f in mesh.faces)
+    mirrored = np.linalg.slogdet(matrix[:3, :3])[0] < 0  # the sign alone: det may overflow
+    faces = tuple(f[::-1] for f in mesh.faces) if mirrored else mesh.faces
     flat_faces = face_corners(faces, len(world))
     corners, face_of_corner = flat_faces.corner, flat_faces.face
     sizes = np.diff(np.append(flat_faces.starts, len(corners)))
     faces_n = face_normals(world, flat_faces)
     if mesh.normals is not None:
-        normals = mesh.normals @ np.linalg.inv(matrix[:3, :3])  # normals take the inverse transpose
-        normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
+        # Normals take the inverse transpose; unit first, so no product overflows.
+        normals = unit_vectors(unit_vectors(mesh.normals) @ np.linalg.inv(matrix[:3, :3]))
         corner_normals = normals[corners]
     elif mesh.smooth:
         corner_normals = vertex_normals(world, flat_faces)[corners]
@@ -176,8 +201,7 @@ def _viewer(camera):
     """(eye, view_dir) for `illuminate`: the eye point, or the direction toward an orthographic viewer."""
     if camera.projection == "perspective":
         return np.array(camera.eye), None
-    toward = np.subtract(camera.eye, camera.look_at)
-    return None, toward / np.linalg.norm(toward)
+    return None, unit_vectors(np.subtract(camera.eye, camera.look_at))
 
 
 def _lit(scene, positions, normals, materials):
@@ -219,6 +243,8 @@ def prepare(
 
             transform_vertices(scene.camera, world, width, height, trace=tracer, object=index)
         clip = np.hstack([world, np.ones((len(world), 1))]) @ clip_from_world.T
+        unfit = ~np.isfinite(clip).all(axis=1)
+        _check_vertices("positions (clip space)", unfit, np.full(len(clip), index), "finite")
         keep = np.ones(len(faces), bool)
         # Back faces of a transparent object show through it where the visibility can show them.
         see_through = transparent_visible and not obj.material.opaque
@@ -276,14 +302,11 @@ def prepare(
     flat_colors = (
         np.concatenate(rows["flat"]) if rows["flat"] else np.zeros((0, 3 if k == 0 else 0))
     )
-    w = xyzw[:, 3]
-    screen = ScreenPolygons(
-        xy=np.column_stack([(xyzw[:, 0] / w + 1) / 2 * width, (xyzw[:, 1] / w + 1) / 2 * height]),
-        z=xyzw[:, 2] / w,
-        inv_w=1 / w,
-        values=values,
-        offsets=np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64),
+    polygon_object = (
+        np.concatenate(rows["object"]).astype(np.int64) if rows["object"] else np.zeros(0, np.int64)
     )
+    vertex_object = np.repeat(polygon_object, sizes)
+    screen = _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading)
     stats.polygons_drawn = len(sizes)
     stages = [
         Stage(
@@ -301,11 +324,51 @@ def prepare(
             else "every polygon trivially accepted or rejected",
         ),
     ]
-    polygon_object = (
-        np.concatenate(rows["object"]).astype(np.int64) if rows["object"] else np.zeros(0, np.int64)
-    )
     polygon_opacity = np.concatenate(rows["opacity"]) if rows["opacity"] else np.zeros(0)
     return _Prepared(screen, flat_colors, polygon_object, polygon_opacity, stats, stages)
+
+
+def _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading) -> ScreenPolygons:
+    """Clipped polygons divided by w into display coordinates, checked against the z-buffer's bounds.
+
+    The scene limits (`scanviz.scene.model`) keep every value within them;
+    should one ever be out, the error names the object and the field it came
+    from, not an internal array.
+    """
+    w = xyzw[:, 3]
+    with np.errstate(all="ignore"):
+        xy = np.column_stack([(xyzw[:, 0] / w + 1) / 2 * width, (xyzw[:, 1] / w + 1) / 2 * height])
+        z, inv_w = xyzw[:, 2] / w, 1 / w
+    checks = [
+        ("positions (display x, y)", xy, COORD_LIMIT, f"within +-{COORD_LIMIT} pixels"),
+        ("positions (depth z)", z[:, None], VALUE_LIMIT, f"within +-{VALUE_LIMIT:g}"),
+        *(
+            (field, values[:, first:stop], VALUE_LIMIT, f"within +-{VALUE_LIMIT:g}")
+            for first, stop, field in ATTRIBUTE_FIELDS.get(shading, ())
+        ),
+    ]
+    for what, array, limit, rule in checks:
+        _check_vertices(what, ~(np.abs(array) <= limit).all(axis=1), vertex_object, rule)
+    far = ~((inv_w >= 1 / VALUE_LIMIT) & (inv_w <= VALUE_LIMIT))
+    _check_vertices(
+        "positions (1/w)", far, vertex_object, f"in [{1 / VALUE_LIMIT:g}, {VALUE_LIMIT:g}]"
+    )
+    return ScreenPolygons(
+        xy=xy,
+        z=z,
+        inv_w=inv_w,
+        values=values,
+        offsets=np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64),
+    )
+
+
+def _check_vertices(what: str, broken: np.ndarray, vertex_object: np.ndarray, rule: str) -> None:
+    if broken.any():
+        obj = int(vertex_object[np.flatnonzero(broken)[0]])
+        raise ValueError(
+            f"'objects[{obj}]': its {what} after the viewing transform must be {rule} (the scene "
+            "limits of scanviz.scene.model keep them there: the camera or the object is beyond them)"
+        )
 
 
 def render(
@@ -360,6 +423,23 @@ def render(
     Returns
     -------
     RenderResult
+        Image, depth and alpha never hold NaN.
+
+    Raises
+    ------
+    scanviz.limits.ResourceLimitError
+        If the render's buffers (per pixel; for the a-buffer, its fragments as
+        they are made) would go over the memory limit (`scanviz.limits`).
+    ValueError, TypeError
+        On a bad argument, naming it and the rule.
+
+    Notes
+    -----
+    An a-buffer render of more than `PROGRESS_POLYGONS` polygons shows a
+    progress bar (tqdm); Ctrl-C or a kernel interrupt stops it between
+    polygons with KeyboardInterrupt, returning nothing. The plan's a-buffer
+    line bounds the work: at most the sum of the polygons' bounding boxes in
+    fragments (`RenderStats.fragments_estimated`).
     """
     width, height = check_raster_size(width, height)
     check_choice("shading", shading, SHADINGS)
@@ -371,6 +451,7 @@ def render(
     if not isinstance(scene, Scene):
         raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
     tracer = as_tracer(trace)
+    _check_render_memory(width, height, visibility, ATTRIBUTES[shading], shading)
     prepared = prepare(
         scene,
         width,
@@ -381,6 +462,7 @@ def render(
         transparent_visible=visibility == "abuffer",
     )
     stats = prepared.stats
+    stats.fragments_estimated = _fragment_bound(prepared.polygons, width, height)
     options = {"subpixel_bits": subpixel_bits, "perspective": perspective_correct, "tracer": tracer}
     if visibility == "zbuffer":
         image, depth, polygon = _zbuffered(
@@ -392,6 +474,7 @@ def render(
             scene, prepared, width, height, shading, visibility, mask, weights, **options
         )
         alpha = abuffer.alpha
+    _check_no_nan(visibility, image=image, depth=depth, alpha=alpha)
     if edges:
         stats.edge_pixels = _draw_feature_edges(scene, image, depth, width, height)
     plan = _plan(scene, prepared, shading, visibility, edges, tracer)
@@ -399,6 +482,42 @@ def render(
     # Float bounds: with int bounds numpy takes a casting path ~20x slower on a 1024² image.
     np.clip(image, 0.0, 1.0, out=image)
     return RenderResult(image, depth, polygon, stats, plan, recorded, alpha, abuffer)
+
+
+def _check_render_memory(width, height, visibility, attributes, shading) -> None:
+    """Refuse a render whose per-pixel buffers alone are over the memory limit, before any is made.
+
+    The z-buffer holds every attribute per pixel and shades pixels; the
+    a-buffer's per-fragment storage is checked as it grows (`_polygon_fragments`).
+    """
+    per_pixel = PIXEL_BYTES[visibility]
+    if visibility == "zbuffer":
+        per_pixel += 8 * attributes + (SHADING_BYTES if shading in ("phong", "gooch") else 0)
+    check_memory(
+        width * height * per_pixel, f"a {width}x{height} {visibility} render with {shading} shading"
+    )
+
+
+def _fragment_bound(polygons: ScreenPolygons, width: int, height: int) -> int:
+    """At most this many fragments: the sum of the polygons' bounding boxes in pixels, on the raster."""
+    if not polygons.count:
+        return 0
+    starts = polygons.offsets[:-1]
+    low = np.floor(np.minimum.reduceat(polygons.xy, starts, axis=0))
+    high = np.ceil(np.maximum.reduceat(polygons.xy, starts, axis=0))
+    size = np.array([width, height])
+    extent = np.clip(high, 0, size) - np.clip(low, 0, size)
+    return int(np.prod(np.maximum(extent, 0), axis=1).sum())
+
+
+def _check_no_nan(stage: str, **arrays) -> None:
+    """Last resort: a NaN that got past the arithmetic is an error naming the stage, never a pixel."""
+    for name, array in arrays.items():
+        if array is not None and np.isnan(array).any():
+            raise ValueError(
+                f"render: the {stage} stage produced {int(np.isnan(array).sum())} NaN values in "
+                f"{name!r}; this is a bug in scanviz, please report it with the scene"
+            )
 
 
 def _zbuffered(
@@ -450,33 +569,17 @@ def _antialiased(
 ):
     """(image, depth, polygon, a-buffer result): fragments per pixel, resolved by the a-buffer.
 
-    Every fragment is shaded at its pixel center (the a-buffer needs every
-    fragment's color before it knows which are seen). `depth` and `polygon`
-    are those of each pixel's nearest fragment.
+    Every fragment is shaded where it is, at the centroid of its covered
+    sub-samples (the a-buffer needs every fragment's color before it knows
+    which are seen). `depth` and `polygon` are those of each pixel's nearest
+    fragment.
     """
     from .abuffer import MASK_LAYOUTS, Fragments, resolve
-    from .abuffer.fragments import polygon_fragments
 
     polygons, stats = prepared.polygons, prepared.stats
-    parts, owners = [], []
-    for p in range(len(polygons.offsets) - 1):
-        rows = slice(polygons.offsets[p], polygons.offsets[p + 1])
-        found = polygon_fragments(
-            polygons.xy[rows],
-            polygons.z[rows],
-            polygons.inv_w[rows],
-            polygons.values[rows],
-            width,
-            height,
-            mask=mask,
-            subpixel_bits=subpixel_bits,
-            perspective=perspective,
-            trace=tracer,
-            polygon_index=p,
-        )
-        if found is not None:
-            parts.append(found)
-            owners.append(np.full(len(found.xs), p))
+    parts, owners = _polygon_fragments(
+        polygons, width, height, mask, subpixel_bits, perspective, tracer, visibility
+    )
     owner = np.concatenate(owners) if owners else np.zeros(0, np.int64)
     values = (
         np.concatenate([f.values for f in parts])
@@ -529,11 +632,52 @@ def _antialiased(
     return result.image, depth, nearest, result
 
 
+def _polygon_fragments(polygons, width, height, mask, subpixel_bits, perspective, tracer, mode):
+    """Every polygon's fragments, in drawing order, with a progress bar for large scenes.
+
+    Storage grows polygon by polygon and is checked against the memory limit
+    as it grows; Ctrl-C stops between polygons (KeyboardInterrupt, nothing returned).
+    """
+    from .abuffer.fragments import polygon_fragments
+
+    parts, owners, stored = [], [], 0
+    per_fragment = FRAGMENT_BYTES + 8 * polygons.value_count + SHADING_BYTES
+    what = f"the fragments of a {width}x{height} {mode} render"
+    with progress(polygons.count, f"{mode} polygons", threshold=PROGRESS_POLYGONS) as bar:
+        for p in range(polygons.count):
+            rows = slice(polygons.offsets[p], polygons.offsets[p + 1])
+            found = polygon_fragments(
+                polygons.xy[rows],
+                polygons.z[rows],
+                polygons.inv_w[rows],
+                polygons.values[rows],
+                width,
+                height,
+                mask=mask,
+                subpixel_bits=subpixel_bits,
+                perspective=perspective,
+                trace=tracer,
+                polygon_index=p,
+            )
+            bar.update(1)
+            if found is None:
+                continue
+            stored += len(found.xs)
+            check_memory(stored * per_fragment, f"{what} ({stored} fragments by polygon {p})")
+            parts.append(found)
+            owners.append(np.full(len(found.xs), p))
+    return parts, owners
+
+
 def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
     transparent = any(
         not o.material.opaque or any(not m.opaque for m in o.mesh.materials) for o in scene.objects
     )
     deferred = shading in ("phong", "gooch") and visibility == "zbuffer"
+    work = (
+        f"{prepared.stats.polygons_drawn} polygons, at most "
+        f"{prepared.stats.fragments_estimated} fragments (their bounding boxes)"
+    )
     stages = [
         Stage("transform", True, "world -> eye -> clip -> NDC -> display"),
         *prepared.stages,
@@ -548,7 +692,7 @@ def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
             (
                 "per visible pixel only (deferred)"
                 if deferred
-                else "per fragment, at the pixel center"
+                else "per fragment, at the centroid of its covered sub-samples"
             )
             if shading in ("phong", "gooch")
             else f"{shading} shading",
@@ -563,9 +707,9 @@ def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
         Stage(
             "a-buffer",
             visibility == "abuffer",
-            "anti-aliasing: pixel masks, exact areas, fragment lists, packer"
+            f"anti-aliasing: pixel masks, exact areas, fragment lists, packer; {work}"
             if visibility == "abuffer"
-            else "coverage blending instead (the flawed z-buffer anti-aliasing)"
+            else f"coverage blending instead (the flawed z-buffer anti-aliasing); {work}"
             if visibility == "flawed"
             else "transparency ignored by the z-buffer"
             if transparent
@@ -623,28 +767,30 @@ def _draw_feature_edges(scene: Scene, image, depth, width: int, height: int) -> 
         found = feature_edges(o.world, o.flat_faces, eye, view_dir=view_dir)
         pairs = np.concatenate([found["silhouette"], found["boundary"], found["crease"]])
         clip = np.hstack([o.world, np.ones((len(o.world), 1))]) @ clip_from_world.T
-        for a, b in pairs:
-            if clip[a, 3] <= 0 or clip[b, 3] <= 0:
-                continue
-            ends = [
-                (
-                    (clip[v, 0] / clip[v, 3] + 1) / 2 * width,
-                    (clip[v, 1] / clip[v, 3] + 1) / 2 * height,
+        with progress(len(pairs), "feature edges", threshold=PROGRESS_EDGES) as bar:
+            for a, b in pairs:
+                bar.update(1)
+                if clip[a, 3] <= 0 or clip[b, 3] <= 0:
+                    continue
+                ends = [
+                    (
+                        (clip[v, 0] / clip[v, 3] + 1) / 2 * width,
+                        (clip[v, 1] / clip[v, 3] + 1) / 2 * height,
+                    )
+                    for v in (a, b)
+                ]
+                if max(abs(c) for end in ends for c in end) > 2**20:
+                    continue
+                xs, ys = midpoint_line(*(int(np.floor(c)) for end in ends for c in end))
+                along = np.linspace(0.0, 1.0, len(xs))
+                z = clip[a, 2] / clip[a, 3] + along * (
+                    clip[b, 2] / clip[b, 3] - clip[a, 2] / clip[a, 3]
                 )
-                for v in (a, b)
-            ]
-            if max(abs(c) for end in ends for c in end) > 2**20:
-                continue
-            xs, ys = midpoint_line(*(int(np.floor(c)) for end in ends for c in end))
-            along = np.linspace(0.0, 1.0, len(xs))
-            z = clip[a, 2] / clip[a, 3] + along * (
-                clip[b, 2] / clip[b, 3] - clip[a, 2] / clip[a, 3]
-            )
-            inside = (xs >= 0) & (xs < width) & (ys >= 0) & (ys < height)
-            xs, ys, z = xs[inside], ys[inside], z[inside]
-            shown = z <= depth[ys, xs] + EDGE_DEPTH_TOLERANCE
-            image[ys[shown], xs[shown]] = 0.0
-            drawn += int(shown.sum())
+                inside = (xs >= 0) & (xs < width) & (ys >= 0) & (ys < height)
+                xs, ys, z = xs[inside], ys[inside], z[inside]
+                shown = z <= depth[ys, xs] + EDGE_DEPTH_TOLERANCE
+                image[ys[shown], xs[shown]] = 0.0
+                drawn += int(shown.sum())
     return drawn
 
 

@@ -1,6 +1,7 @@
 """The whole pipeline: render() against independent expectations, traced == compiled, plan, CLI."""
 
 import dataclasses
+import os
 
 import matplotlib.image
 import numpy as np
@@ -198,3 +199,167 @@ def test_cli_render_writes_the_image_and_plan(tmp_path, capsys):
     image = matplotlib.image.imread(out)
     assert image.shape[:2] == (40, 48)
     assert main(["render", "builtin:nonesuch", "-o", str(out)]) == 2
+
+
+# --- issue 8 -----------------------------------------------------------------------------------
+
+MODES = [
+    (shading, visibility, perspective)
+    for shading in ("flat", "gouraud", "phong", "gooch")
+    for visibility in ("zbuffer", "abuffer", "flawed")
+    for perspective in (True, False)
+]
+
+
+def assert_clean(result):
+    """No NaN anywhere; image and alpha in [0, 1]; depth finite or +inf (background)."""
+    assert np.isfinite(result.image).all() and (0 <= result.image).all() and (result.image <= 1).all()
+    assert not np.isnan(result.depth).any() and not (result.depth == -np.inf).any()
+    if result.alpha is not None:
+        assert np.isfinite(result.alpha).all()
+        assert (0 <= result.alpha).all() and (result.alpha <= 1).all()
+
+
+def scene_at(scale, eye_distance, near, far, window, material=None, light=None):
+    """The sphere scaled by `scale` and seen from `eye_distance` on +z."""
+    from scanviz.scene import Camera, SceneObject
+
+    sphere = builtin_scene("sphere", level=1)
+    objects = [
+        SceneObject(o.mesh, material or o.material, np.diag([scale, scale, scale, 1.0]))
+        for o in sphere.objects
+    ]
+    camera = Camera(eye=(0, 0, eye_distance), near=near, far=far, window=window)
+    return Scene(objects, camera=camera, lights=(light,) if light else sphere.lights)
+
+
+@pytest.mark.parametrize("shading, visibility, perspective", MODES)
+def test_issue8_d3_scenes_at_the_scene_limits_render(shading, visibility, perspective):
+    huge_light = Light("point", color=(1e6, 1e6, 1e6), position=(0, 0, 1e99))
+    scenes = [
+        scene_at(1e98, 5e98, 1e97, 1e99, (-1e97, 1e97, -1e97, 1e97), light=huge_light),
+        scene_at(1e-90, 5e-90, 1e-91, 1e-88, (-1e-91, 1e-91, -1e-91, 1e-91)),
+        scene_at(1, 5, 1e-11, np.inf, (-1e-11, 1e-11, -1e-11, 1e-11),
+                 material=Material(exponent=1e4, fudge=1e99), light=huge_light),
+    ]
+    for scene in scenes:
+        result = render(scene, 6, 5, shading=shading, visibility=visibility,
+                        perspective_correct=perspective)
+        assert_clean(result)
+        assert result.stats.polygons_drawn > 0
+
+
+def test_issue8_d3_an_internal_bound_names_the_object_and_the_rule():
+    from scanviz.pipeline import _screen_polygons
+
+    xyzw = np.array([[0.0, 0, 0.5, 1], [0.5, 0, 0.5, 1], [0, 0.5, 0.5, 1]] * 2)
+    values = np.zeros((6, 15))
+    values[4, 12] = 1e200  # an exponent no scene allows, on a vertex of object 7
+    with pytest.raises(ValueError, match=r"'objects\[7\]': its materials .* within \+-1e\+100"):
+        _screen_polygons(xyzw, values, np.array([3, 3]), np.array([0, 0, 0, 7, 7, 7]), 4, 4,
+                         "phong")
+
+
+@pytest.mark.parametrize("visibility", ["zbuffer", "abuffer"])
+def test_issue8_d4_render_never_returns_nan(visibility):
+    sphere = builtin_scene("sphere", level=1)
+    light = Light("point", position=(0, 0, 1))
+    object.__setattr__(light, "position", (0.0, 0.0, 1e308))  # past the scene limit, as in the issue
+    scene = dataclasses.replace(sphere, lights=(light,))
+    for shading in ("flat", "gouraud", "phong", "gooch"):
+        assert_clean(render(scene, 16, 16, shading=shading, visibility=visibility))
+
+
+def test_issue8_d7_a_render_too_large_is_refused_before_allocating():
+    from scanviz.limits import ResourceLimitError, memory_limit
+
+    with pytest.raises(ResourceLimitError, match="a 65536x65536 zbuffer render with phong"):
+        render(builtin_scene("sphere", level=1), 65536, 65536)
+    with memory_limit("16M"):
+        with pytest.raises(ResourceLimitError, match="fragments of a 200x200 abuffer render"):
+            render(builtin_scene("sphere", level=1), 200, 200, visibility="abuffer")
+        render(builtin_scene("sphere", level=1), 60, 60, visibility="abuffer")  # fits
+
+
+def test_issue8_d12_plan_estimates_the_work_and_large_renders_show_progress(monkeypatch, capsys):
+    import scanviz.pipeline
+
+    scene = builtin_scene("sphere", level=1)
+    result = render(scene, 20, 20, visibility="abuffer")
+    bound = result.stats.fragments_estimated
+    assert result.stats.fragments <= bound <= 20 * 20 * result.stats.polygons_drawn
+    assert f"at most {bound} fragments" in str(result.plan)
+    monkeypatch.setattr(scanviz.pipeline, "PROGRESS_POLYGONS", 10)
+    render(scene, 20, 20, visibility="abuffer")
+    assert "abuffer polygons" in capsys.readouterr().err
+
+
+def test_issue8_d12_an_interrupt_stops_the_render_cleanly(monkeypatch):
+    import scanviz.abuffer.fragments
+
+    drawn = []
+
+    def interrupted(*args, polygon_index, **kwargs):
+        drawn.append(polygon_index)
+        if polygon_index == 3:
+            raise KeyboardInterrupt
+        return None
+
+    monkeypatch.setattr(scanviz.abuffer.fragments, "polygon_fragments", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        render(builtin_scene("sphere", level=1), 8, 8, visibility="abuffer")
+    assert drawn == [0, 1, 2, 3]
+
+
+TINY_SIZES = [(1, 1), (3, 2), (17, 9), (0, 0), (4, 0)]
+VARIANTS = [(None, False), (True, True), (False, False)]  # (cull, edges), cycled through the modes
+# Built-ins with their parameters made small, so every mode runs in seconds; the a-buffer costs
+# milliseconds per polygon. SCANVIZ_FULL_RENDER_MODES=1 runs them at their full size instead.
+SMALL = {"sphere": {"level": 1}, "function_surface": {"n": 3}, "terrain": {"n": 2}}
+FULL = os.environ.get("SCANVIZ_FULL_RENDER_MODES") == "1"
+
+
+@pytest.mark.parametrize("name", ["umbc_zbuffer", "painter", "sphere", "function_surface",
+                                  "transparent_cube", "terrain"])
+def test_every_builtin_scene_renders_in_every_mode_at_tiny_sizes(name):
+    scene = builtin_scene(name, **({} if FULL else SMALL.get(name, {})))
+    # transparent_cube has 567 polygons: its a-buffer runs in 4 of the 16 modes, at 1x1 only.
+    slow = name == "transparent_cube" and not FULL
+    for index, (shading, visibility, perspective) in enumerate(MODES):
+        if slow and visibility != "zbuffer" and index % 4:
+            continue
+        sizes = [(1, 1)] if slow and visibility != "zbuffer" else TINY_SIZES
+        for size_index, (width, height) in enumerate(sizes):
+            cull, edges = VARIANTS[(index + size_index) % len(VARIANTS)]
+            result = render(scene, width, height, shading=shading, visibility=visibility,
+                            perspective_correct=perspective, cull=cull, edges=edges)
+            assert result.image.shape == (height, width, 3)
+            assert_clean(result)
+
+
+def test_every_builtin_scene_is_covered_by_the_tiny_size_test():
+    from scanviz.scene import BUILTIN_SCENES
+
+    assert set(BUILTIN_SCENES) == {"umbc_zbuffer", "painter", "sphere", "function_surface",
+                                   "transparent_cube", "terrain"}
+
+
+def test_hostile_but_valid_geometry_renders_in_every_mode():
+    from scanviz.scene import Camera, Mesh, SceneObject
+
+    positions = [
+        (0, 0, 0), (1, 1, 0), (2, 2, 0),  # collinear
+        (0.5, 0.5, 0), (0.5, 0.5, 0), (0.7, 0.1, 0),  # a repeated vertex: two distinct corners
+        (-1, -1, 4), (1, -1, 4), (0, 1, 4),  # exactly on the near plane (z = 4 is distance 1)
+        (-1, -1, 6), (1, -1, 6), (0, 1, 3),  # through the eye plane z = 5
+        (0.1, 0.1, -1), (0.1 + 1e-9, 0.1, -1), (0.1, 0.1 + 1e-9, -1),  # far below a sub-sample
+    ]
+    faces = [[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11], [12, 13, 14]]
+    mesh = Mesh(positions, faces, closed=False, smooth=True)
+    scene = Scene([SceneObject(mesh)], camera=Camera(near=1.0, far=50.0))
+    for (shading, visibility, perspective), (width, height) in zip(
+        MODES, [(5, 4), (1, 1), (3, 2)] * len(MODES), strict=False
+    ):
+        result = render(scene, width, height, shading=shading, visibility=visibility,
+                        perspective_correct=perspective, edges=True)
+        assert_clean(result)

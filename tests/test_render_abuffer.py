@@ -4,6 +4,8 @@ import dataclasses
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from scanviz import area_coverage, render
 from scanviz.scene import Camera, Material, Mesh, Scene, SceneObject
@@ -95,3 +97,90 @@ def test_transparent_objects_keep_their_back_faces_in_the_a_buffer():
 def test_fragments_at_needs_an_a_buffer_render():
     with pytest.raises(ValueError, match="visibility='abuffer'"):
         render(builtin_scene("sphere"), 8, 8).fragments_at(0, 0)
+
+
+# --- issue 8 -----------------------------------------------------------------------------------
+
+
+def issue8_d1_scene():
+    """The issue's example: vertex 0 has exponent 0, vertices 1 and 2 exponent 1, on a 4x4 raster."""
+    mesh = Mesh([[0.75, 0.75, 0], [3.5, 0.75, 0], [0.75, 3.5, 0]], [[0, 1, 2]], closed=False,
+                vertex_materials=[0, 1, 1], materials=(Material(exponent=0), Material(exponent=1)))
+    camera = Camera(eye=(0, 0, 5), look_at=(0, 0, 0), window=(0, 4, 0, 4), near=0.1, far=10,
+                    projection="orthographic")
+    return Scene([SceneObject(mesh)], camera=camera)
+
+
+@pytest.mark.parametrize("visibility", ["abuffer", "flawed"])
+@pytest.mark.parametrize("shading", ["phong", "gooch", "gouraud"])
+def test_issue8_d1_fragments_are_shaded_inside_the_polygon(shading, visibility):
+    result = render(issue8_d1_scene(), 4, 4, shading=shading, visibility=visibility)
+    assert np.isfinite(result.image).all() and result.stats.fragments > 0
+    # Pixel (3, 0)'s center (3.5, 0.5) is outside the triangle; its fragment is not.
+    assert result.fragments_at(3, 0) or visibility == "flawed"
+
+
+def test_issue8_d1_fragment_values_are_the_barycentric_values_at_the_covered_centroid():
+    from fractions import Fraction
+
+    from scanviz.abuffer import mask_to_grid
+    from scanviz.abuffer.fragments import polygon_fragments
+
+    triangle = [(Fraction(3, 4), Fraction(3, 4)), (Fraction(7, 2), Fraction(3, 4)),
+                (Fraction(3, 4), Fraction(7, 2))]
+    values = [[0.0], [1.0], [1.0]]  # the exponents of the issue's example
+    found = polygon_fragments(np.array(triangle, float), np.zeros(3), np.ones(3),
+                              np.array(values), 4, 4, mask="8x8", perspective=False)
+    (ax, ay), (bx, by), (cx, cy) = triangle
+    area = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
+    checked = 0
+    for x, y, mask, value in zip(found.xs, found.ys, found.masks, found.values[:, 0], strict=True):
+        assert 0.0 <= value <= 1.0
+        rows, cols = np.nonzero(mask_to_grid(int(mask), "8x8"))
+        if not len(rows):
+            continue
+        px = x + sum(Fraction(2 * int(i) + 1, 16) for i in cols) / len(cols)
+        py = y + sum(Fraction(2 * int(j) + 1, 16) for j in rows) / len(rows)
+        u = ((px - ax) * (cy - ay) - (cx - ax) * (py - ay)) / area  # weight of vertex b
+        v = ((bx - ax) * (py - ay) - (px - ax) * (by - ay)) / area  # weight of vertex c
+        assert value == pytest.approx(float(u + v), abs=1e-12)
+        checked += 1
+    assert checked >= 5
+
+
+@settings(derandomize=True, max_examples=60, deadline=None)
+@given(
+    st.lists(st.tuples(st.floats(-2, 9), st.floats(-2, 9)), min_size=3, max_size=3),
+    st.lists(st.floats(0.4, 0.6), min_size=9, max_size=9),
+    st.lists(st.floats(0.01, 100), min_size=3, max_size=3),
+    st.booleans(),
+    st.sampled_from(["4x4", "8x8"]),
+)
+def test_issue8_d1_fragment_colors_stay_within_the_vertex_colors(xy, colors, w, perspective, mask):
+    from scanviz.abuffer.fragments import polygon_fragments
+
+    colors = np.array(colors).reshape(3, 3)
+    found = polygon_fragments(np.array(xy), np.zeros(3), 1 / np.array(w), colors, 7, 7,
+                              mask=mask, perspective=perspective)
+    if found is None:
+        return
+    assert found.values.shape == (len(found.xs), 3)
+    assert (found.values >= colors.min(axis=0) - 1e-12).all()
+    assert (found.values <= colors.max(axis=0) + 1e-12).all()
+
+
+@pytest.mark.parametrize("name", ["umbc_zbuffer", "painter", "sphere", "transparent_cube"])
+@pytest.mark.parametrize("visibility", ["abuffer", "flawed"])
+def test_issue8_d2_flat_affine_a_buffer_renders(name, visibility):
+    scene = builtin_scene(name)
+    result = render(scene, 4, 4, shading="flat", visibility=visibility, perspective_correct=False)
+    correct = render(scene, 4, 4, shading="flat", visibility=visibility)
+    np.testing.assert_array_equal(result.image, correct.image)  # flat colors need no interpolation
+
+
+@pytest.mark.parametrize("visibility", ["abuffer", "flawed"])
+@pytest.mark.parametrize("shading", ["phong", "gooch"])
+def test_issue8_d1_terrain_renders_through_the_a_buffer(shading, visibility):
+    # The terrain's vertex materials differ in exponent: pixel-center planes made them negative.
+    result = render(builtin_scene("terrain", n=4), 8, 8, shading=shading, visibility=visibility)
+    assert np.isfinite(result.image).all() and result.stats.fragments > 0

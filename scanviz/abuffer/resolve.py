@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..conventions import check_choice, check_raster_size
+from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..trace import Recorder, Trace
 from ..trace.events import FragmentRecord
@@ -33,6 +34,8 @@ __all__ = ["ABufferResult", "ABufferStats", "FragmentRecord", "Fragments", "reso
 WEIGHTS = ("area", "mask")
 MODES = ("abuffer", "flawed")
 MAX_MASK_BITS = 64
+RESOLVE_PIXEL_BYTES = 8 * 7  # image (3), alpha, list head, and the result's reshaped copies
+RESOLVE_FRAGMENT_BYTES = 8 * 12  # the compiled path's copy of the fields, and the links
 
 
 @dataclass(frozen=True)
@@ -304,6 +307,10 @@ def resolve(
     tracer = as_tracer(trace)
     full = (1 << (cols * rows)) - 1
     _check_fragments_fit(fragments, width, height, full)
+    check_memory(
+        width * height * RESOLVE_PIXEL_BYTES + fragments.count * RESOLVE_FRAGMENT_BYTES,
+        f"resolving {fragments.count} fragments on a {width}x{height} a-buffer",
+    )
     if tracer is None:
         result = kernels.resolve_compiled(
             fragments, width, height, full, cols * rows, weights, background, mode

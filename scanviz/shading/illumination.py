@@ -35,6 +35,7 @@ from ..scene.faces import FaceCorners, face_corners, newell
 from ..scene.model import Light, Material
 from ..trace import Tracer
 from ..trace.events import Illumination, LightTerm
+from ..vectors import unit_vectors, vector_norm
 
 MATERIAL_FIELDS = (
     "r",
@@ -163,9 +164,18 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def _unit(vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Rows scaled to unit length, and their lengths; zero rows stay zero."""
-    length = np.sqrt(_dot(vectors, vectors))
-    return vectors / np.where(length > 0, length, 1.0)[:, None], length
+    """Rows scaled to unit length, and their lengths; zero rows stay zero (no overflow, no underflow)."""
+    return unit_vectors(vectors), vector_norm(vectors)
+
+
+def _unit_between(start: np.ndarray, end: object) -> tuple[np.ndarray, np.ndarray]:
+    """Unit vectors from each row of `start` toward `end`, and the distances (inf beyond float64).
+
+    Both ends are halved first (exact), so the difference of two finite points never overflows.
+    """
+    half, length = _unit(np.asarray(end, dtype=np.float64) / 2 - start / 2)
+    with np.errstate(over="ignore"):
+        return half, 2 * length
 
 
 def _to_viewer(positions: np.ndarray, eye: object, view_dir: object) -> np.ndarray:
@@ -176,11 +186,11 @@ def _to_viewer(positions: np.ndarray, eye: object, view_dir: object) -> np.ndarr
             "'view_dir' (the direction toward an orthographic viewer)"
         )
     if eye is not None:
-        return _unit(_vector("eye", eye) - positions)[0]
+        return _unit_between(positions, _vector("eye", eye))[0]
     view = _vector("view_dir", view_dir)
     if not np.abs(view).max() > 0:
         raise ValueError("'view_dir' must not be the zero vector")
-    direction, _ = _unit(view[None] / np.abs(view).max())  # pre-scaled: tiny vectors keep a length
+    direction, _ = _unit(view[None])
     return np.broadcast_to(direction, positions.shape)
 
 
@@ -194,12 +204,20 @@ def _facing_viewer(normals: np.ndarray, view: np.ndarray) -> tuple[np.ndarray, n
 def _toward_light(positions: np.ndarray, light: Light) -> tuple[np.ndarray, np.ndarray]:
     """L at every point (unit, toward the light) and the distance to a point light (else 0)."""
     if light.kind == "point":
-        return _unit(np.asarray(light.position) - positions)
+        return _unit_between(positions, light.position)
     direction, _ = _unit(-np.asarray([light.direction]))
     return np.broadcast_to(direction, positions.shape), np.zeros(len(positions))
 
 
 # --- the illumination model --------------------------------------------------------------
+
+
+def _attenuation(fudge: np.ndarray, distance: np.ndarray) -> np.ndarray:
+    """f_att = 1 / (1 + fudge d); exactly 1 where fudge = 0, even at an infinite d (no 0 * inf)."""
+    falloff = np.zeros(np.broadcast(fudge, distance).shape)
+    with np.errstate(over="ignore"):
+        np.multiply(fudge, distance, out=falloff, where=fudge > 0)
+    return 1 / (1 + falloff)
 
 
 def _shade(
@@ -224,10 +242,7 @@ def _shade(
         diffuse = materials[:, _DIFFUSE, None] * surface * np.maximum(n_dot_l, 0)[:, None]
         highlight = materials[:, _SPECULAR] * np.maximum(r_dot_v, 0) ** materials[:, _EXPONENT]
         specular = np.where(n_dot_l > 0, highlight, 0.0)  # no highlight on the unlit side
-        if light.kind == "point":
-            attenuation = 1 / (1 + materials[:, _FUDGE] * distance)
-        else:
-            attenuation = np.ones(len(positions))
+        attenuation = _attenuation(materials[:, _FUDGE], distance)
         contribution = (
             attenuation[:, None] * np.asarray(light.color) * (diffuse + specular[:, None])
         )
@@ -404,7 +419,7 @@ def _face_area_vectors(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Newell's sums per face (twice the area vector; zero if degenerate), and the centroids."""
     area, centroid, spread = newell(positions, corners)
-    area[np.sqrt(_dot(area, area)) <= _DEGENERATE * spread] = 0.0
+    area[vector_norm(area) <= _DEGENERATE * spread] = 0.0
     return area, centroid
 
 

@@ -26,6 +26,7 @@ from ..conventions import (
     check_raster_size,
     check_subpixel_bits,
 )
+from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..raster.fixed import SnappedPolygon, exact_bits, snap_units
 from ..raster.interpolate import (
@@ -328,6 +329,10 @@ def zbuffer(
     if not isinstance(perspective, bool | np.bool_):
         raise TypeError(f"'perspective' must be a bool; got {perspective!r}")
     tracer = as_tracer(trace)
+    check_memory(
+        width * height * 8 * (2 + polygons.value_count),
+        f"a {width}x{height} z-buffer with {polygons.value_count} attributes per pixel",
+    )
     if bits is None:
         bits = exact_bits(polygons.xy)
     units = snap_units(polygons.xy, sample, bits)

@@ -1,5 +1,7 @@
 """The Phong illumination model: analytic checks, traced == fast bit for bit, and normals."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -420,3 +422,37 @@ def test_a_tiny_view_direction_is_still_a_direction():
     args = (np.zeros((1, 3)), np.array([[0.0, 0.0, 1.0]]), material, None, (Light(),), np.ones(3))
     tiny = illuminate(*args, view_dir=(0.0, 0.0, 1e-200))
     np.testing.assert_array_equal(tiny, illuminate(*args, view_dir=(0.0, 0.0, 1.0)))
+
+
+# --- issue 8 -----------------------------------------------------------------------------------
+
+
+def beyond_scene_limits(light: Light, position) -> Light:
+    """`light` moved past the scene's own limits (1e99), as a hostile caller could build one."""
+    object.__setattr__(light, "position", tuple(float(c) for c in position))
+    return light
+
+
+@pytest.mark.parametrize("fudge", [0.0, 0.5, 1e99])
+@pytest.mark.parametrize("distance", [1e99, 1e308])
+def test_issue8_d4_a_far_point_light_gives_no_nan(fudge, distance):
+    material = Material(color=WHITE, ambient=0.25, diffuse=0.5, specular=0.125, fudge=fudge)
+    light = beyond_scene_limits(Light(kind="point", position=(0, 0, 1)), (0, 0, distance))
+    positions = [(0, 0, 0), (0, 0, -1e99), (1e99, -1e99, 1e99)]
+    normals = [(0, 0, 1), (0, 0, 1e-300), (0, 0, 1e300)]
+    lit = illuminate(positions, normals, rows(material, 3), (0, 0, 9e98), [light], WHITE)
+    assert np.isfinite(lit).all()
+    # Head-on light: N.L = R.V = 1, so Od (ka + f_att kd) + f_att ks with f_att = 1 / (1 + fudge d).
+    attenuation = 1 / (1 + fudge * distance)
+    np.testing.assert_allclose(lit[0], 0.25 + attenuation * (0.5 + 0.125), rtol=1e-15)
+
+
+def test_issue8_d4_distances_beyond_float64_attenuate_to_zero_not_nan():
+    material = Material(color=WHITE, ambient=0.0, diffuse=1.0, specular=0.0, fudge=1.0)
+    light = beyond_scene_limits(Light(kind="point", position=(0, 0, 1)), (0, 0, 1.5e308))
+    lit = illuminate([(0, 0, -1.5e308)], [(0, 0, 1)], rows(material, 1), (0, 0, 1.6e308),
+                     [light], WHITE)  # the distance, 3e308, overflows: f_att = 0
+    np.testing.assert_array_equal(lit, [[0.0, 0.0, 0.0]])
+    no_fudge = rows(dataclasses.replace(material, fudge=0.0), 1)
+    lit = illuminate([(0, 0, -1.5e308)], [(0, 0, 1)], no_fudge, (0, 0, 1.6e308), [light], WHITE)
+    np.testing.assert_array_equal(lit, [[1.0, 1.0, 1.0]])  # no fudge: no fall-off, even there
