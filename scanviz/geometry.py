@@ -24,20 +24,22 @@ from .conventions import COORD_LIMIT, short_repr
 LIMIT_TEXT = f"+-2**20 = {COORD_LIMIT} pixels"
 _NOT_FINITE, _BEYOND, _NOT_REAL = 1, 2, 3
 _NUMERIC_KINDS = "iuf"  # integer, unsigned, float dtypes; bool, complex, str, object are not
+_MAX_NESTING = 8  # deeper than any coordinate array (numpy iterates at most 32 dimensions)
 
 
 def nested_array(value: object) -> np.ndarray | None:
     """`value` as an ndarray, Python objects kept as they are (so bools stay bools).
 
     An ndarray is returned as it is; anything else becomes an object array.
-    None when the nesting is too ragged for numpy to hold.
+    None when the nesting is too ragged or too deep (numpy holds 32 dimensions) for numpy to hold.
     """
     if isinstance(value, np.ndarray):
         return value
     try:
-        return np.array(value, dtype=object)
-    except ValueError:
+        array = np.array(value, dtype=object)
+    except (ValueError, RuntimeError, RecursionError):
         return None
+    return array if array.ndim <= _MAX_NESTING else None
 
 
 def _is_sequence(value: object) -> bool:

@@ -132,3 +132,13 @@ def test_issue8_d9_real_numbers_of_any_kind_are_accepted_exactly():
     assert Polygon(objects).contours[0].tolist() == [[0.0, 0.0], [4.0, 0.0], [-0.0, 4.0]]
     with pytest.raises(ValueError, match="beyond"):
         Polygon(np.array([(0, 0), (1, 0), (np.iinfo(np.int64).min, 1)]))
+
+
+def test_issue8_fuzz_nesting_deeper_than_numpy_holds_is_a_shape_error():
+    # Found by the fuzz campaign: 33+ levels made numpy raise RuntimeError (32 dimensions).
+    for depth in (40, 5000):
+        value = 0
+        for _ in range(depth):
+            value = [value]
+        with pytest.raises(ValueError, match=r"contour 0 must be an \(N, 2\) array; .*vertex 0"):
+            Polygon(value)

@@ -466,6 +466,7 @@ def area_coverage(
     array([[0. , 0.5],
            [0.5, 1. ]])
     """
+    width, height = check_raster_size(width, height)  # before the estimate uses them
     what = f"area_coverage: a {width}x{height} float64 raster"
     row0, rows = _coverage_rows(
         polygon, width, height, rule, subpixel_bits, what, extra_bytes=8 * width * height

@@ -210,7 +210,7 @@ def load_obj(source: str | os.PathLike, *, smooth: bool = True, closed: bool = F
     if isinstance(source, str) and "\n" in source:
         text, origin = source.removeprefix("\ufeff"), ""
     elif isinstance(source, str | os.PathLike):
-        text, origin = read_bounded(source), f"{source}, "
+        text, origin = read_bounded(source), f"{str(source)!r}, "
     else:
         raise TypeError(f"'source' must be a path or OBJ text; got {type(source).__name__}")
     # Python lists of parsed numbers take about 12 bytes per byte of OBJ text (measured).

@@ -483,13 +483,13 @@ def read_json(path: str | os.PathLike) -> object:
     JSON, nests too deep or holds an over-long integer; OSError if unreadable.
     """
     text = read_bounded(path)
-    _check_depth(text, str(path))
+    _check_depth(text, repr(str(path)))
     try:
         return json.loads(text, parse_int=_parse_int)
     except json.JSONDecodeError as error:
-        raise ValueError(f"{path}: not valid JSON: {error}") from None
+        raise ValueError(f"{str(path)!r}: not valid JSON: {error}") from None
     except ValueError as error:  # from _parse_int
-        raise ValueError(f"{path}: {error}") from None
+        raise ValueError(f"{str(path)!r}: {error}") from None
 
 
 def is_obj_path(source: object) -> bool:
@@ -542,7 +542,7 @@ def load_scene(source: str | os.PathLike | Mapping) -> Scene:
     try:
         return scene_from_dict(data, base_dir=path.parent)
     except (ValueError, TypeError) as error:
-        raise type(error)(f"{path}: {error}") from None
+        raise type(error)(f"{str(path)!r}: {error}") from None
 
 
 def _material_dict(material: Material) -> dict:

@@ -293,3 +293,13 @@ def test_the_early_refusal_counts_no_more_work_than_the_sweep_does(polygon):
     least = area._least_work(*edges[:4], row0, row1, 2**62)
     _, work = area._coverage_kernel(*edges, 12, 10, False, row0, row1, 2**62)
     assert least <= work
+
+
+@pytest.mark.parametrize(
+    ("width", "height", "error"),
+    [(4.0, 10**400, TypeError), (True, None, TypeError), (4, 10**400, ValueError)],
+)
+def test_issue8_fuzz_raster_size_is_checked_before_the_memory_estimate(width, height, error):
+    # Found by the fuzz campaign: the estimate multiplied width * height before they were checked.
+    with pytest.raises(error, match="'width'|'height'"):
+        area_coverage([(0, 0), (4, 0), (0, 3)], width, height)

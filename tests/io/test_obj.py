@@ -145,7 +145,7 @@ def test_files(tmp_path):
     path.write_text(SQUARE + "f 1 2 3 4\n")
     assert faces(load_obj(path)) == faces(load_obj(str(path))) == [[0, 1, 2, 3]]
     (tmp_path / "bad.obj").write_text("v 0 0 0\n\nf 1 2 0\n")
-    with pytest.raises(ValueError, match=r"bad\.obj, line 3: vertex index 0 is invalid"):
+    with pytest.raises(ValueError, match=r"bad\.obj', line 3: vertex index 0 is invalid"):
         load_obj(tmp_path / "bad.obj")
     with pytest.raises(FileNotFoundError):
         load_obj(tmp_path / "missing.obj")

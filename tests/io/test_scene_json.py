@@ -204,7 +204,7 @@ def test_obj_paths_start_at_the_scene_file(tmp_path):
     assert scene_from_dict(data, base_dir=tmp_path).objects[0].mesh.closed
     (tmp_path / "models" / "tri.obj").write_text("v 0 0 0\nv 1 0 0\n\nf 1 2 0\n")
     with pytest.raises(
-        ValueError, match=r"objects\[0\]\.mesh\.obj: .*tri\.obj, line 4: vertex index 0"
+        ValueError, match=r"objects\[0\]\.mesh\.obj: .*tri\.obj', line 4: vertex index 0"
     ):
         load_scene(str(tmp_path / "scene.json"))
     data["objects"][0]["mesh"]["obj"] = "models/none.obj"
@@ -216,13 +216,13 @@ def test_files_name_themselves_in_errors(tmp_path):
     path = tmp_path / "nan.json"
     text = json.dumps(base()).replace('"eye": [0, 0, 5]', '"eye": [0, NaN, 5]')
     path.write_text(text)
-    with pytest.raises(ValueError, match=r"nan\.json: camera\.eye\[1\] must be finite; got nan"):
+    with pytest.raises(ValueError, match=r"nan\.json': camera\.eye\[1\] must be finite; got nan"):
         load_scene(path)
     path.write_text(json.dumps(base()).replace('"look_at"', '"look_at": [0, 0, 0], "lookat"'))
-    with pytest.raises(ValueError, match=r"nan\.json: camera has an unknown key 'lookat'"):
+    with pytest.raises(ValueError, match=r"nan\.json': camera has an unknown key 'lookat'"):
         load_scene(path)
     path.write_text("{ not json")
-    with pytest.raises(ValueError, match=r"nan\.json: not valid JSON: .*line 1 column 3"):
+    with pytest.raises(ValueError, match=r"nan\.json': not valid JSON: .*line 1 column 3"):
         load_scene(path)
     with pytest.raises(TypeError, match="'source' must be a path, a dict or 'builtin:NAME'"):
         load_scene(3)
@@ -388,7 +388,7 @@ def test_issue8_d6_deep_json_is_refused_before_parsing(tmp_path, depth):
     path = tmp_path / "deep.json"
     path.write_text('{"camera": ' + "[" * depth + "]" * depth + ', "s": "[[[[[["}')
     with pytest.raises(
-        ValueError, match=rf"deep.json: JSON nested {depth + 1} deep; .* at most 64"
+        ValueError, match=rf"deep.json': JSON nested {depth + 1} deep; .* at most 64"
     ):
         load_scene(path)
     path.write_text(
@@ -406,7 +406,7 @@ def test_issue8_d11_file_errors_name_the_file(tmp_path):
         load_scene(path)
     path.write_text('{"version": ' + "1" * 5000 + "}")
     with pytest.raises(
-        ValueError, match=r"scene.json: an integer literal of 5000 digits is beyond"
+        ValueError, match=r"scene.json': an integer literal of 5000 digits is beyond"
     ):
         load_scene(path)
 
@@ -424,3 +424,12 @@ def test_issue8_d13_load_scene_frames_an_obj_file(tmp_path, name):
     assert scene.objects[0].mesh.positions[1].tolist() == [2, 0, 0]
     assert scene.camera.look_at == (1.0, 1.0, 0.0) and scene.lights and scene.name == path.stem
     assert scene.objects[0].material == Material()
+
+
+def test_issue8_fuzz_file_names_in_errors_are_quoted(tmp_path):
+    # Found by the fuzz campaign: a file name holding a newline made a two-line message.
+    path = tmp_path / "a\nb.json"
+    path.write_text('"x"')
+    with pytest.raises(TypeError) as caught:
+        load_scene(path)
+    assert "\n" not in str(caught.value) and repr(str(path)) in str(caught.value)
