@@ -39,6 +39,7 @@ lint: $(STAMP)
 	$(BIN)/ruff check scanviz tests
 
 test: lint $(NUMBA_STAMP) chromium
+	$(BIN)/python -m scanviz conformance
 	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
 bench: $(STAMP) $(NUMBA_STAMP)
