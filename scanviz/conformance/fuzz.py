@@ -261,6 +261,8 @@ def classify(name: str, entry: EntryPoint, value: dict) -> tuple[str, str]:
     except CallTimeout as error:
         return "other", f"{error}"
     except Exception as error:  # noqa: BLE001 -- classifying every exception is the point
+        if isinstance(error.__cause__ or error.__context__, CallTimeout):  # raised inside numba
+            return "other", f"over the {CALL_SECONDS:g} s budget (inside a compiled kernel)"
         if clear_error(error, files=entry.files):
             return "clear", ""
         return "other", one_line(error)
