@@ -35,11 +35,23 @@ def nested_array(value: object) -> np.ndarray | None:
     """
     if isinstance(value, np.ndarray):
         return value
+    if isinstance(value, (list, tuple)) and _numeric_arrays(value):
+        try:
+            return np.array(value)  # fast: numeric arrays keep their values exactly
+        except ValueError:
+            pass  # ragged: the object array below names the misfit
     try:
         array = np.array(value, dtype=object)
     except (ValueError, RuntimeError, RecursionError):
         return None
     return array if array.ndim <= _MAX_NESTING else None
+
+
+def _numeric_arrays(items: list | tuple) -> bool:
+    """True when every item is an ndarray of an int or float dtype (no bools to hide)."""
+    return bool(items) and all(
+        isinstance(item, np.ndarray) and item.dtype.kind in _NUMERIC_KINDS for item in items
+    )
 
 
 def _is_sequence(value: object) -> bool:
@@ -109,6 +121,25 @@ def _fault(value: object) -> int:
     return 0 if -COORD_LIMIT <= value <= COORD_LIMIT else _BEYOND
 
 
+_PLAIN_TYPES = (float, int, np.float64, np.float32, np.int64, np.int32)
+
+
+def _plain_numbers(raw: np.ndarray) -> np.ndarray | None:
+    """An object array of plain ints and floats as float64 (vectorized), or None for the rest.
+
+    Exact types only, so bools (a subclass of int) take the element-wise path;
+    ints beyond float64 (OverflowError) do too. An int that rounds to a
+    float keeps its side of +-2**20, since ints near the limit are exact.
+    """
+    types = np.frompyfunc(type, 1, 1)(raw)
+    if not np.isin(types, _PLAIN_TYPES).all():
+        return None
+    try:
+        return raw.astype(np.float64)
+    except OverflowError:
+        return None
+
+
 def _faults(raw: np.ndarray) -> np.ndarray:
     """Per-coordinate `_fault` codes of `raw` (vectorized for numeric dtypes)."""
     if raw.dtype.kind == "f":
@@ -118,6 +149,9 @@ def _faults(raw: np.ndarray) -> np.ndarray:
     if raw.dtype.kind in "iu":  # compared as integers: no abs() overflow at -2**63
         return np.where((raw < -COORD_LIMIT) | (raw > COORD_LIMIT), _BEYOND, 0)
     if raw.dtype == object:
+        plain = _plain_numbers(raw)
+        if plain is not None:
+            return _faults(plain)
         codes = np.fromiter(map(_fault, raw.flat), dtype=np.int8, count=raw.size)
         return codes.reshape(raw.shape)
     return np.full(raw.shape, _NOT_REAL)

@@ -11,6 +11,24 @@ from __future__ import annotations
 
 import numpy as np
 
+_SAFE_LOW, _SAFE_HIGH = 1e-280, 1e280  # squared lengths between these lost nothing to range
+
+
+def _squared_lengths(vectors: np.ndarray) -> np.ndarray:
+    with np.errstate(over="ignore", under="ignore"):
+        return np.einsum("...i,...i->...", vectors, vectors)
+
+
+def _risky(squares: np.ndarray) -> np.ndarray:
+    """Where the direct sum of squares may have overflowed or underflowed (or is 0, inf, NaN)."""
+    return ~((squares > _SAFE_LOW) & (squares < _SAFE_HIGH))
+
+
+def _scaled(vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(largest |component|, vectors divided by it): the slow path, exact in range."""
+    scale = np.max(np.abs(vectors), axis=-1)
+    return scale, vectors / np.where(scale > 0, scale, 1.0)[..., None]
+
 
 def vector_norm(vectors: np.ndarray) -> np.ndarray:
     """Euclidean length along the last axis, without intermediate overflow or underflow.
@@ -23,11 +41,14 @@ def vector_norm(vectors: np.ndarray) -> np.ndarray:
     5.0
     """
     vectors = np.asarray(vectors, dtype=np.float64)
-    scale = np.max(np.abs(vectors), axis=-1)
-    safe = np.where(scale > 0, scale, 1.0)
-    scaled = vectors / safe[..., None]
-    with np.errstate(over="ignore"):
-        return scale * np.sqrt(np.sum(scaled * scaled, axis=-1))
+    squares = np.atleast_1d(_squared_lengths(vectors))
+    lengths = np.sqrt(squares)
+    risky = _risky(squares)
+    if risky.any():
+        scale, scaled = _scaled(vectors.reshape(-1, vectors.shape[-1])[risky.ravel()])
+        with np.errstate(over="ignore"):
+            lengths[risky] = scale * np.sqrt(_squared_lengths(scaled))
+    return lengths.reshape(vectors.shape[:-1])
 
 
 def unit_vectors(vectors: np.ndarray) -> np.ndarray:
@@ -37,8 +58,16 @@ def unit_vectors(vectors: np.ndarray) -> np.ndarray:
     [[0.707107, 0.707107, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
     """
     vectors = np.asarray(vectors, dtype=np.float64)
-    scale = np.max(np.abs(vectors), axis=-1, keepdims=True)
-    nonzero = scale > 0
-    scaled = vectors / np.where(nonzero, scale, 1.0)
-    length = np.sqrt(np.sum(scaled * scaled, axis=-1, keepdims=True))
-    return np.where(nonzero, scaled / np.where(nonzero, length, 1.0), 0.0)
+    squares = _squared_lengths(vectors)
+    risky = _risky(squares)
+    units = vectors / np.sqrt(np.where(risky, 1.0, squares))[..., None]
+    if np.any(risky):
+        flat = units.reshape(-1, vectors.shape[-1])
+        pick = np.atleast_1d(risky).ravel()
+        _, scaled = _scaled(vectors.reshape(-1, vectors.shape[-1])[pick])
+        length = np.sqrt(_squared_lengths(scaled))
+        flat[pick] = np.where(
+            length[:, None] > 0, scaled / np.where(length > 0, length, 1.0)[:, None], 0.0
+        )
+        units = flat.reshape(vectors.shape)
+    return units
