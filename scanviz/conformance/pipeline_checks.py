@@ -9,6 +9,7 @@ import numpy as np
 from .. import render, scan_convert, triangle_samples
 from ..abuffer.masks import mask_buffer_rows, pixel_masks
 from ..io import load_scene
+from ..pipeline import SHADINGS, VISIBILITIES
 from ..scene import BUILTIN_SCENES
 from ..visibility import ScreenPolygons, zbuffer
 from . import exact
@@ -25,8 +26,6 @@ from .cases import (
 )
 from .classify import one_line
 
-SHADINGS = ("flat", "gouraud", "phong", "gooch")
-VISIBILITIES = ("zbuffer", "abuffer", "flawed")
 RENDER_MODES = [(s, v) for s in SHADINGS for v in VISIBILITIES]
 
 
