@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..limits import read_bounded
+from ..limits import json_nesting, read_bounded
 from ..scene.builtin import BUILTIN_MESHES, builtin_scene
 from ..scene.model import (
     LINEAR_LIMIT,
@@ -457,10 +457,7 @@ def scene_from_dict(data: Mapping, base_dir: str | os.PathLike | None = None) ->
 
 def _check_depth(text: str, where: str) -> None:
     """Refuse JSON nested deeper than `MAX_DEPTH` before parsing it (the parser recurses)."""
-    outside_strings = re.sub(r'"(?:[^"\\]|\\.)*"?', "", text)
-    brackets = np.frombuffer(re.sub(r"[^\[\]{}]+", "", outside_strings).encode(), np.uint8)
-    opening = (brackets == ord("[")) | (brackets == ord("{"))
-    depth = int(np.cumsum(np.where(opening, 1, -1).astype(np.int32)).max(initial=0))
+    depth, _ = json_nesting(text)
     if depth > MAX_DEPTH:
         raise ValueError(
             f"{where}: JSON nested {depth} deep; a scene file may nest at most {MAX_DEPTH} deep"

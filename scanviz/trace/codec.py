@@ -22,7 +22,15 @@ import re
 import typing
 from fractions import Fraction
 
-from ..limits import FILE_ENV, ResourceLimitError, check_memory, current_file_limit, format_size
+from ..limits import (
+    FILE_ENV,
+    JSON_STRING,
+    ResourceLimitError,
+    check_memory,
+    current_file_limit,
+    format_size,
+    json_nesting,
+)
 from .events import EVENT_TYPES, Event
 from .schema import DIGITS, Invalid, Nested, shown
 
@@ -39,12 +47,8 @@ BYTES_PER_CHARACTER = 32
 _KIND = frozenset({"kind"})
 _NON_FINITE_TEXT = {math.inf: "inf", -math.inf: "-inf"}
 _CONSTANTS = {"Infinity": "inf", "-Infinity": "-inf", "NaN": "nan"}  # non-standard literals
-_STRING = r'"[^"\\]*(?:\\.[^"\\]*)*(?:"|\\?\Z)'  # to the end if unterminated: linear time
-_STRINGS = re.compile(_STRING, re.DOTALL)
-_NOT_BRACKETS = re.compile(r"[^\[\]{}]+")
-_INNERMOST = re.compile(r"\[\]|\{\}")
 _LONG_NUMBER = re.compile(rf"(?<!\d)\d{{{DIGITS + 1}}}")  # starts only at a run: linear time
-_TOKENS = re.compile(rf"{_STRING}|[\[\]{{}},:]|{_LONG_NUMBER.pattern}", re.DOTALL)
+_TOKENS = re.compile(rf"{JSON_STRING}|[\[\]{{}},:]|{_LONG_NUMBER.pattern}", re.DOTALL)
 
 
 def encode(value: object) -> object:
@@ -141,11 +145,8 @@ def check_structure(text: str) -> None:
     The test runs at C speed on the text without its strings; only text that
     fails it is walked token by token to name the path.
     """
-    outside_strings = _STRINGS.sub("", text)
-    brackets = _NOT_BRACKETS.sub("", outside_strings)
-    for _ in range(MAX_DEPTH):  # each pass removes the innermost level
-        brackets = _INNERMOST.sub("", brackets)
-    if brackets or _LONG_NUMBER.search(outside_strings):
+    depth, outside_strings = json_nesting(text)
+    if depth > MAX_DEPTH or _LONG_NUMBER.search(outside_strings):
         problem = _first_problem(text)
         if problem is not None:
             raise ValueError(f"trace JSON at {problem}")
