@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import steps
 from ..conventions import (
     ARITHMETICS,
     MAX_SUBPIXEL_BITS,
@@ -88,7 +89,7 @@ def scan_snapped(
     bytes (what the caller will allocate next to the spans); past that it
     raises `scanviz.limits.ResourceLimitError`.
     """
-    if trace is not None or not snapped.compilable:
+    if trace is not None or not snapped.compilable or steps.replaced():
         return scan_reference(snapped, width, height, rule=rule, arithmetic=arithmetic, trace=trace)
     max_spans = max(current_memory_limit() - reserved, 0) // SPAN_BUFFER_BYTES
     spans, (edges, kept, rows, max_active), refused = kernels.scan_spans(

@@ -26,6 +26,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from .. import steps
 from ..limits import check_memory, current_memory_limit
 from ..trace.events import (
     AetEntry,
@@ -251,15 +252,41 @@ def _insertion_sort(active: list[ActiveEdge]) -> int:
     return swaps
 
 
-def _row_spans(active: list[ActiveEdge], evenodd: bool, width: int):
-    """Yield (x_start, x_end, winding) for the inside runs of one sorted row, clipped."""
+@steps.step(
+    "span_rule",
+    takes="crossings: one row's AET as (x, winding) pairs sorted by x (x a Fraction, or a float "
+    "in float arithmetic); rule: 'nonzero' or 'evenodd'",
+    returns="the row's inside runs as (x_start, x_end, winding) with x_start = ceil(x_in), "
+    "x_end = ceil(x_out) (half-open), winding the count inside; in order, unclipped",
+)
+def span_rule(crossings: list[tuple], rule: str) -> list[tuple[int, int, int]]:
+    """The spans between consecutive crossings where the winding count says "inside"."""
+    spans = []
     winding = 0
-    for here, after in zip(active, active[1:], strict=False):
-        winding += here.winding
-        inside = winding % 2 if evenodd else winding
-        start, end = max(here.crossing.ceil(), 0), min(after.crossing.ceil(), width)
-        if inside and start < end:
-            yield start, end, winding
+    for (x_in, step), (x_out, _) in zip(crossings, crossings[1:], strict=False):
+        winding += step
+        inside = winding % 2 if rule == "evenodd" else winding != 0
+        if inside and math.ceil(x_in) < math.ceil(x_out):
+            spans.append((math.ceil(x_in), math.ceil(x_out), winding))
+    return spans
+
+
+def _crossing_x(crossing: ExactCrossing | FloatCrossing) -> Fraction | float:
+    """The crossing's x as `span_rule` takes it (floats clamped where they lie far off the raster)."""
+    exact = crossing.exact()
+    if exact is not None:
+        return exact
+    return min(max(float(crossing.x), -FLOAT_X_LIMIT), FLOAT_X_LIMIT)
+
+
+def _row_spans(active: list[ActiveEdge], rule: str, width: int) -> list[tuple[int, int, int]]:
+    """(x_start, x_end, winding) of the inside runs of one sorted row, clipped to the raster."""
+    crossings = [(_crossing_x(e.crossing), e.winding) for e in active]
+    clipped = [
+        (max(start, 0), min(end, width), winding)
+        for start, end, winding in steps.get("span_rule")(crossings, rule)
+    ]
+    return [span for span in clipped if span[0] < span[1]]
 
 
 def bucketed_edge_table(
@@ -323,7 +350,7 @@ def scan_reference(
         stats.rows_scanned += 1
         stats.swaps += swaps
         stats.max_active = max(stats.max_active, len(active))
-        row_spans = list(_row_spans(active, rule == "evenodd", width))
+        row_spans = _row_spans(active, rule, width)
         spans.extend((y, start, end) for start, end, _ in row_spans)
         if len(spans) > most_spans:
             check_memory(

@@ -1,0 +1,79 @@
+"""Random inputs for hidden and practice cases: the shapes that break textbook code.
+
+Every generator takes a `random.Random` (seeded by the grader from the course
+secret, or locally for practice) and returns plain values, so a case crosses
+the sandbox boundary as JSON.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+FEATURES = ("convex", "concave", "horizontal edges", "shared vertex", "sliver", "on pixel centers")
+
+
+def grid_value(rng: random.Random, low: float, high: float, step: float = 0.25) -> float:
+    """A value in [low, high] on a grid of `step` (quarter pixels by default: ties happen)."""
+    return round(rng.uniform(low, high) / step) * step
+
+
+def star(rng: random.Random, center: tuple[float, float], radius: float, points: int) -> list:
+    """A star polygon (self-intersecting when `points` is odd and >= 5), on quarter pixels."""
+    cx, cy = center
+    turn = 2 if points % 2 else 1
+    return [
+        [
+            round((cx + radius * math.cos(2 * math.pi * k * turn / points)) * 4) / 4,
+            round((cy + radius * math.sin(2 * math.pi * k * turn / points)) * 4) / 4,
+        ]
+        for k in range(points)
+    ]
+
+
+def polygon(rng: random.Random, width: int, height: int) -> tuple[str, list]:
+    """(feature, vertices) of a random polygon inside a width x height raster.
+
+    The feature is one of `FEATURES` (the category a hidden case is shown as);
+    the polygon always has at least 3 distinct vertices.
+    """
+    while True:
+        feature, vertices = _polygon(rng, width, height)
+        if len({tuple(v) for v in vertices}) >= 3:
+            return feature, vertices
+
+
+def _polygon(rng: random.Random, width: int, height: int) -> tuple[str, list]:
+    feature = rng.choice(FEATURES)
+    if feature == "horizontal edges":
+        x0, x1 = sorted(grid_value(rng, 0, width) for _ in range(2))
+        y0, y1 = sorted(grid_value(rng, 0, height) for _ in range(2))
+        x1, y1 = x1 + 1, y1 + 1
+        return feature, [[x0, y0], [x1, y0], [x1, y1], [(x0 + x1) / 2, y1 + 0.5], [x0, y1]]
+    if feature == "shared vertex":
+        cx, cy = grid_value(rng, 1, width - 1, 1), grid_value(rng, 1, height - 1, 1)
+        return feature, [
+            [cx, cy], [cx - 1.5, cy - 1.75], [cx + 1.25, cy - 2],
+            [cx, cy], [cx + 2, cy + 1.5], [cx - 1, cy + 2],
+        ]
+    if feature == "sliver":
+        x0, y0 = grid_value(rng, 0, width), grid_value(rng, 0, height)
+        x1, y1 = grid_value(rng, 0, width), grid_value(rng, 0, height)
+        return feature, [[x0, y0], [x1, y1], [x1 + 0.25, y1 + 0.5]]
+    if feature == "on pixel centers":
+        return feature, [
+            [grid_value(rng, 0, width, 0.5), grid_value(rng, 0, height, 0.5)] for _ in range(3)
+        ]
+    points = rng.randint(3, 6) if feature == "convex" else rng.choice((5, 7))
+    center = (width / 2 + rng.uniform(-1, 1), height / 2 + rng.uniform(-1, 1))
+    radius = min(width, height) / 2 * rng.uniform(0.6, 0.95)
+    if feature == "concave":
+        return feature, star(rng, center, radius, points)
+    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(points))
+    return feature, [
+        [
+            round((center[0] + radius * math.cos(a)) * 4) / 4,
+            round((center[1] + radius * math.sin(a)) * 4) / 4,
+        ]
+        for a in angles
+    ]

@@ -1,0 +1,301 @@
+"""Comparing a student's run with the reference's, in the algorithm's own terms.
+
+Values compare structurally: lists element by element (a tuple equals a list
+with the same items), records and events field by field, arrays by shape and
+elements. Integers and fractions compare exactly; floats compare exactly
+unless the exercise declares a relative tolerance. A difference is reported
+as a path into the value (``entries[2].x``), the student's value and the
+reference's, with fractions written as the slides write them:
+``17/5 (3 2/5 = 3.4)``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from ..trace.events import Event
+from .plain import Opaque, Record
+
+MISSING = object()  # a list item or field that one side lacks
+
+
+@dataclass(frozen=True)
+class Difference:
+    """Where two values first differ: the path into them and both values there."""
+
+    path: str
+    yours: object
+    reference: object
+
+    def describe(self) -> str:
+        """One line: ``entries[2].x: yours 17/5 (3.4), reference 37/10 (3.7)``."""
+        where = f"{self.path}: " if self.path else ""
+        if self.yours is MISSING:
+            return f"{where}missing in yours; reference has {show(self.reference)}"
+        if self.reference is MISSING:
+            return f"{where}extra in yours ({show(self.yours)}); the reference has none"
+        return f"{where}yours {show(self.yours)}, reference {show(self.reference)}"
+
+
+def show(value: object, limit: int = 160) -> str:
+    """A value as a student reads it: exact fractions with their mixed form and decimal."""
+    if isinstance(value, Fraction):
+        if value.denominator == 1:
+            return str(value.numerator)
+        whole = int(value)
+        mixed = f"{whole} {abs(value - whole)} = " if whole else ""
+        return f"{value} ({mixed}{float(value):.6g})"
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, Opaque):
+        return value.repr
+    if isinstance(value, Record):
+        inner = ", ".join(f"{k}={show(v, limit)}" for k, v in value.fields.items())
+        text = f"{value.type}({inner})"
+    elif isinstance(value, Event):
+        inner = ", ".join(f"{f.name}={show(getattr(value, f.name), limit)}" for f in _fields(value))
+        text = f"{value.kind}({inner})"
+    elif isinstance(value, list | tuple):
+        text = "[" + ", ".join(show(v, limit) for v in value) + "]"
+    elif isinstance(value, np.ndarray):
+        text = np.array2string(value, threshold=20, separator=", ")
+    else:
+        text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _fields(value: object) -> list[dataclasses.Field]:
+    return list(dataclasses.fields(value))  # type: ignore[arg-type]
+
+
+def _items(value: object) -> dict[str, object] | None:
+    """The named fields of a record-like value (Record, dataclass, named tuple), else None."""
+    if isinstance(value, Record):
+        return value.fields
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {f.name: getattr(value, f.name) for f in _fields(value)}
+    if isinstance(value, tuple) and hasattr(value, "_fields"):
+        return value._asdict()
+    return None
+
+
+def _number(value: object) -> bool:
+    return isinstance(value, int | float | Fraction | np.integer | np.floating) and not isinstance(
+        value, bool | np.bool_
+    )
+
+
+def numbers_equal(yours: object, reference: object, rtol: float) -> bool:
+    """Exact equality, or within `rtol` (relative, with an absolute floor of `rtol`) for floats."""
+    if isinstance(yours, bool) or isinstance(reference, bool):
+        return type(yours) is type(reference) and yours == reference
+    if yours == reference:
+        return True
+    if isinstance(yours, float) and isinstance(reference, float) and math.isnan(yours):
+        return math.isnan(reference)
+    if rtol == 0 or not (isinstance(yours, float) or isinstance(reference, float)):
+        return False
+    a, b = float(yours), float(reference)
+    return math.isfinite(a) and math.isfinite(b) and abs(a - b) <= rtol * max(1.0, abs(b))
+
+
+def first_difference(
+    yours: object, reference: object, rtol: float = 0.0, path: str = ""
+) -> Difference | None:
+    """The first place `yours` and `reference` differ, or None if they agree."""
+    if _number(yours) and _number(reference):
+        return None if numbers_equal(yours, reference, rtol) else Difference(path, yours, reference)
+    if isinstance(yours, Event) and isinstance(reference, Event) and yours.kind != reference.kind:
+        return Difference(f"{path}.kind" if path else "kind", yours.kind, reference.kind)
+    named_yours, named_reference = _items(yours), _items(reference)
+    if named_yours is not None and named_reference is not None:
+        for name in named_reference:
+            inner = f"{path}.{name}" if path else name
+            difference = first_difference(
+                named_yours.get(name, MISSING), named_reference[name], rtol, inner
+            )
+            if difference is not None:
+                return difference
+        return None
+    if isinstance(yours, np.ndarray) or isinstance(reference, np.ndarray):
+        return _array_difference(yours, reference, rtol, path)
+    if _sequence(yours) and _sequence(reference):
+        for index in range(max(len(yours), len(reference))):
+            item_yours = yours[index] if index < len(yours) else MISSING
+            item_reference = reference[index] if index < len(reference) else MISSING
+            difference = first_difference(item_yours, item_reference, rtol, f"{path}[{index}]")
+            if difference is not None:
+                return difference
+        return None
+    if isinstance(yours, dict) and isinstance(reference, dict):
+        for key in sorted(set(yours) | set(reference)):
+            difference = first_difference(
+                yours.get(key, MISSING), reference.get(key, MISSING), rtol, f"{path}[{key!r}]"
+            )
+            if difference is not None:
+                return difference
+        return None
+    if yours is MISSING or reference is MISSING or type(yours) is not type(reference):
+        return Difference(path, yours, reference)
+    return None if yours == reference else Difference(path, yours, reference)
+
+
+def _sequence(value: object) -> bool:
+    return isinstance(value, list | tuple) and not hasattr(value, "_fields")
+
+
+def _array_difference(yours, reference, rtol: float, path: str) -> Difference | None:
+    try:
+        a, b = np.asarray(yours), np.asarray(reference)
+    except (TypeError, ValueError):
+        return Difference(path, yours, reference)
+    if a.shape != b.shape:
+        return Difference(f"{path} shape" if path else "shape", a.shape, b.shape)
+    if a.dtype == object or b.dtype == object:
+        return first_difference(a.tolist(), b.tolist(), rtol, path)
+    if rtol == 0 or not (a.dtype.kind == "f" or b.dtype.kind == "f"):
+        same = (a == b) | (np.isnan(a) & np.isnan(b)) if a.dtype.kind == "f" else a == b
+    else:
+        same = np.isclose(a, b, rtol=rtol, atol=rtol, equal_nan=True)
+    if np.all(same):
+        return None
+    index = tuple(int(i) for i in np.argwhere(~same)[0])
+    return Difference(f"{path}{list(index)}", a[index].item(), b[index].item())
+
+
+def where(event: Event) -> str:
+    """Where an event happened, in the algorithm's terms: ``row 5``, ``pixel (3, 2)``, ..."""
+    parts = []
+    polygon = getattr(event, "polygon", None)
+    if isinstance(polygon, int) and polygon:
+        parts.append(f"polygon {polygon}")
+    x, y = getattr(event, "x", None), getattr(event, "y", None)
+    if isinstance(x, int) and isinstance(y, int):
+        parts.append(f"pixel ({x}, {y})")
+    elif isinstance(y, int):
+        parts.append(f"row {y}")
+    step = getattr(event, "step", None)
+    if isinstance(step, int):
+        parts.append(f"step {step}")
+    return ", ".join(parts)
+
+
+@dataclass(frozen=True)
+class TraceDifference:
+    """The first diverging event of two traces, and every diverging place after it."""
+
+    index: int  # 0-based position of the first diverging event
+    length: int  # events in the reference
+    kind: str
+    place: str
+    difference: Difference
+    matched: int  # events before it that agree
+    later: tuple[str, ...]  # places of the later diverging events (rows, pixels), in order
+
+    def describe(self) -> str:
+        place = f", {self.place}" if self.place else ""
+        lines = [
+            f"first difference at event {self.index + 1} of {self.length} -- {self.kind}{place}",
+            f"  {self.difference.describe()}",
+            f"  events 1-{self.matched} matched"
+            if self.matched
+            else "  no event matched before it",
+        ]
+        if self.later:
+            shown_places = ", ".join(self.later[:12]) + (" ..." if len(self.later) > 12 else "")
+            lines.append(f"  it also differs at: {shown_places} ({len(self.later)} places)")
+        return "\n".join(lines)
+
+
+def trace_difference(
+    yours: Sequence[Event], reference: Sequence[Event], rtol: float = 0.0
+) -> TraceDifference | None:
+    """Compare two event sequences event by event; None if they agree."""
+    first = None
+    later: list[str] = []
+    for index in range(max(len(yours), len(reference))):
+        mine = yours[index] if index < len(yours) else MISSING
+        theirs = reference[index] if index < len(reference) else MISSING
+        difference = first_difference(mine, theirs, rtol)
+        if difference is None:
+            continue
+        event = theirs if theirs is not MISSING else mine
+        place = where(event)
+        if first is None:
+            first = (index, event.kind, place, difference)
+        elif place and (not later or later[-1] != place):
+            later.append(place)
+    if first is None:
+        return None
+    index, kind, place, difference = first
+    return TraceDifference(
+        index, len(reference), kind, place, difference, index, tuple(p for p in later if p != place)
+    )
+
+
+@dataclass(frozen=True)
+class RasterDifference:
+    """Matched, missing and extra samples of a student's raster against the reference."""
+
+    yours: np.ndarray  # (H, W) bool, row 0 at the bottom
+    reference: np.ndarray
+
+    @property
+    def matched(self) -> int:
+        return int(np.count_nonzero(self.yours & self.reference))
+
+    @property
+    def missing(self) -> int:
+        return int(np.count_nonzero(self.reference & ~self.yours))
+
+    @property
+    def extra(self) -> int:
+        return int(np.count_nonzero(self.yours & ~self.reference))
+
+    def art(self, limit: int = 64) -> str:
+        """Scotty3D's legend, y up: ``#`` matched, ``!`` extra, ``?`` missing, ``.`` empty."""
+        rows, cols = self.reference.shape
+        if rows > limit or cols > limit:
+            return f"(a {cols}x{rows} raster: too large to print; see the image)"
+        glyphs = np.full(self.reference.shape, ".", dtype="<U1")
+        glyphs[self.yours & self.reference] = "#"
+        glyphs[self.yours & ~self.reference] = "!"
+        glyphs[self.reference & ~self.yours] = "?"
+        return "\n".join("".join(row) for row in glyphs[::-1])
+
+    def describe(self) -> str:
+        return (
+            f"samples: {self.matched} matched (#), {self.extra} extra (!), "
+            f"{self.missing} missing (?)\n{self.art()}"
+        )
+
+    def image(self) -> np.ndarray:
+        """An (H, W, 3) float image, row 0 at the top: grey matched, red extra, blue missing."""
+        image = np.ones(self.reference.shape + (3,))
+        image[self.yours & self.reference] = (0.55, 0.55, 0.55)
+        image[self.yours & ~self.reference] = (0.85, 0.15, 0.15)
+        image[self.reference & ~self.yours] = (0.15, 0.35, 0.9)
+        return image[::-1]
+
+
+def raster_difference(yours: object, reference: np.ndarray) -> RasterDifference | None:
+    """The sample diff of two (H, W) bool rasters, or None if they agree.
+
+    A student raster of the wrong shape or type counts as empty.
+    """
+    reference = np.asarray(reference, dtype=bool)
+    try:
+        mine = np.asarray(yours, dtype=bool)
+    except (TypeError, ValueError):
+        mine = np.zeros_like(reference)
+    if mine.shape != reference.shape:
+        mine = np.zeros_like(reference)
+    if np.array_equal(mine, reference):
+        return None
+    return RasterDifference(mine, reference)

@@ -1,0 +1,1 @@
+"""Placeholder: exercises of this stage are being written."""
