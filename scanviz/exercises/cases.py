@@ -53,8 +53,12 @@ def _polygon(rng: random.Random, width: int, height: int) -> tuple[str, list]:
     if feature == "shared vertex":
         cx, cy = grid_value(rng, 1, width - 1, 1), grid_value(rng, 1, height - 1, 1)
         return feature, [
-            [cx, cy], [cx - 1.5, cy - 1.75], [cx + 1.25, cy - 2],
-            [cx, cy], [cx + 2, cy + 1.5], [cx - 1, cy + 2],
+            [cx, cy],
+            [cx - 1.5, cy - 1.75],
+            [cx + 1.25, cy - 2],
+            [cx, cy],
+            [cx + 2, cy + 1.5],
+            [cx - 1, cy + 2],
         ]
     if feature == "sliver":
         x0, y0 = grid_value(rng, 0, width), grid_value(rng, 0, height)

@@ -24,7 +24,9 @@ def register(exercise: Exercise) -> Exercise:
         raise ValueError(f"exercise {exercise.id!r} is registered twice")
     taken = {e.number: e.id for e in _CATALOG.values()}
     if exercise.number in taken:
-        raise ValueError(f"exercise number {exercise.number} is taken by {taken[exercise.number]!r}")
+        raise ValueError(
+            f"exercise number {exercise.number} is taken by {taken[exercise.number]!r}"
+        )
     _CATALOG[exercise.id] = exercise
     return exercise
 

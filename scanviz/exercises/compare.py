@@ -12,8 +12,9 @@ reference's, with fractions written as the slides write them:
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -213,15 +214,46 @@ class TraceDifference:
         return "\n".join(lines)
 
 
+def _key(event: object) -> tuple[str, str]:
+    return (getattr(event, "kind", "?"), where(event) if isinstance(event, Event) else "")
+
+
+def aligned(yours: Sequence, reference: Sequence) -> Iterator[tuple[int, object, object]]:
+    """(reference index, yours, reference) pairs of two traces.
+
+    Equal events are matched first (a longest matching, as ``diff`` does);
+    in the gaps, events are paired by kind and place; an event only one
+    side has is paired with MISSING, so one extra event does not make every
+    later event differ.
+    """
+    whole = [show(e, 10**9) for e in yours], [show(e, 10**9) for e in reference]
+    for tag, i0, i1, j0, j1 in _opcodes(*whole):
+        if tag == "equal":
+            yield from ((j0 + k, yours[i0 + k], reference[j0 + k]) for k in range(i1 - i0))
+            continue
+        gap_yours, gap_reference = yours[i0:i1], reference[j0:j1]
+        keys = [_key(e) for e in gap_yours], [_key(e) for e in gap_reference]
+        for inner, a0, a1, b0, b1 in _opcodes(*keys):
+            if inner in ("equal", "replace") and a1 - a0 == b1 - b0:
+                yield from (
+                    (j0 + b0 + k, gap_yours[a0 + k], gap_reference[b0 + k]) for k in range(a1 - a0)
+                )
+                continue
+            yield from ((j0 + b0 + k, MISSING, gap_reference[b0 + k]) for k in range(b1 - b0))
+            yield from ((j0 + b1, gap_yours[a0 + k], MISSING) for k in range(a1 - a0))
+
+
+def _opcodes(a: list, b: list) -> list[tuple]:
+    return difflib.SequenceMatcher(None, a, b, autojunk=False).get_opcodes()
+
+
 def trace_difference(
     yours: Sequence[Event], reference: Sequence[Event], rtol: float = 0.0
 ) -> TraceDifference | None:
     """Compare two event sequences event by event; None if they agree."""
     first = None
     later: list[str] = []
-    for index in range(max(len(yours), len(reference))):
-        mine = yours[index] if index < len(yours) else MISSING
-        theirs = reference[index] if index < len(reference) else MISSING
+    for index, mine, theirs in aligned(yours, reference):
         difference = first_difference(mine, theirs, rtol)
         if difference is None:
             continue
@@ -229,14 +261,12 @@ def trace_difference(
         place = where(event)
         if first is None:
             first = (index, event.kind, place, difference)
-        elif place and (not later or later[-1] != place):
+        elif place and place != first[2] and place not in later:
             later.append(place)
     if first is None:
         return None
     index, kind, place, difference = first
-    return TraceDifference(
-        index, len(reference), kind, place, difference, index, tuple(p for p in later if p != place)
-    )
+    return TraceDifference(index, len(reference), kind, place, difference, index, tuple(later))
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,9 @@ import copy
 import dataclasses
 import hashlib
 import hmac
+import os
 import random
+import sysconfig
 import traceback
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -164,11 +166,22 @@ class Outcome:
 
 def _error_text(error: BaseException, answer: str) -> str:
     """``TypeError: ... (in update_aet, line 5)``: the error and the student's innermost line."""
-    frames = [
-        f for f in traceback.extract_tb(error.__traceback__) if f.filename.startswith("<answer")
-    ]
+    frames = [f for f in traceback.extract_tb(error.__traceback__) if _student_file(f.filename)]
     where = f" (in {frames[-1].name}, line {frames[-1].lineno})" if frames else ""
-    return f"{type(error).__name__}: {error}{where}"
+    message = str(error)
+    return f"{type(error).__name__}{': ' + message if message else ''}{where}"
+
+
+def _student_file(filename: str) -> bool:
+    """Whether a traceback frame is the student's code (not scanviz, not Python's own files)."""
+    if filename.startswith("<answer"):
+        return True
+    path = os.path.abspath(filename)
+    return not (path.startswith(_PACKAGE) or path.startswith(_PYTHON) or filename.startswith("<"))
+
+
+_PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+_PYTHON = os.path.abspath(sysconfig.get_paths()["stdlib"])
 
 
 def _normalized(outcome: Outcome) -> Outcome:
@@ -340,7 +353,8 @@ def judge(
 
 def _same_run(a: Outcome, b: Outcome, rtol: float) -> bool:
     return (
-        trace_difference(a.trace, b.trace, rtol) is None
+        _error_kind(a) == _error_kind(b)
+        and trace_difference(a.trace, b.trace, rtol) is None
         and first_difference(a.calls, b.calls, rtol) is None
         and first_difference(a.result, b.result, rtol) is None
         and first_difference(a.raster, b.raster) is None
@@ -366,6 +380,12 @@ def _with_variant(
     return verdict
 
 
+def _error_kind(outcome: Outcome) -> str | None:
+    """The exception type a run raised (None if it did not): two runs that both raised at once
+    are the same run only if they raised the same kind of error."""
+    return None if outcome.error is None else outcome.error.split(":")[0].split(" (")[0]
+
+
 def _differences(outcome: Outcome, reference: Outcome, rtol: float):
     trace = trace_difference(outcome.trace, reference.trace, rtol)
     calls = [
@@ -381,6 +401,16 @@ def _first_wrong(trace: TraceDifference | None, call: Difference | None) -> tupl
     if call is not None:
         return ("call", call.path, show(call.yours))
     return None
+
+
+def edited_variant(solution: str, name: str, hint: str, *edits: tuple[str, str]) -> Variant:
+    """The variant of `solution` with each (old, new) text edit applied; every old text must occur."""
+    source = solution
+    for old, new in edits:
+        if old not in source:
+            raise ValueError(f"variant {name!r}: {old!r} does not occur in the solution")
+        source = source.replace(old, new)
+    return Variant(name, hint, source)
 
 
 def compile_answer(source: str, name: str, filename: str = "<answer>") -> Callable:

@@ -19,8 +19,10 @@ import numpy as np
 
 from ..trace.codec import encode, event_from_dict
 from ..trace.events import Event
+from ..trace.schema import Invalid
 
 REPR_LIMIT = 200  # characters of an unknown value's repr that are kept
+ARRAY_KINDS = "biuf"  # the array dtypes that cross the boundary (others come back as repr)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -63,7 +65,7 @@ def to_plain(value: object, depth: int = 0) -> object:
         return {"$fraction": [value.numerator, value.denominator]}
     if isinstance(value, Event):
         return {"$event": encode(value)}
-    if isinstance(value, np.ndarray):
+    if isinstance(value, np.ndarray) and value.dtype.kind in ARRAY_KINDS:
         return {"$array": to_plain(value.tolist(), depth + 1), "dtype": str(value.dtype)}
     if isinstance(value, tuple) and hasattr(value, "_fields"):
         return _record(type(value).__name__, value._asdict(), depth)
@@ -91,10 +93,19 @@ def _short_repr(value: object) -> str:
 
 def from_plain(data: object) -> object:
     """The Python value of plain `data`; malformed data raises ValueError."""
+    try:
+        return _from_plain(data)
+    except Invalid as error:
+        raise ValueError(f"not a plain event: {error.rule}") from None
+    except (TypeError, KeyError, AttributeError, ZeroDivisionError) as error:
+        raise ValueError(f"not a plain value: {type(error).__name__}: {error}") from None
+
+
+def _from_plain(data: object) -> object:
     if data is None or isinstance(data, bool | int | float | str):
         return data
     if isinstance(data, list):
-        return [from_plain(item) for item in data]
+        return [_from_plain(item) for item in data]
     if not isinstance(data, dict) or len(data) == 0:
         raise ValueError(f"not a plain value: {_short_repr(data)}")
     if "$fraction" in data:
@@ -105,13 +116,16 @@ def from_plain(data: object) -> object:
     if "$event" in data:
         return event_from_dict(data["$event"])
     if "$array" in data:
-        return np.array(from_plain(data["$array"]), dtype=np.dtype(str(data["dtype"])))
+        dtype = np.dtype(str(data["dtype"]))
+        if dtype.kind not in ARRAY_KINDS:
+            raise ValueError(f"not a plain array: dtype {dtype} is not bool, int or float")
+        return np.array(_from_plain(data["$array"]), dtype=dtype)
     if "$record" in data:
         return Record(
-            str(data["$record"]), {str(k): from_plain(v) for k, v in data["fields"].items()}
+            str(data["$record"]), {str(k): _from_plain(v) for k, v in data["fields"].items()}
         )
     if "$dict" in data:
-        return {str(k): from_plain(v) for k, v in data["$dict"].items()}
+        return {str(k): _from_plain(v) for k, v in data["$dict"].items()}
     if "$repr" in data:
         return Opaque(str(data["$repr"]))
     raise ValueError(f"not a plain value: {_short_repr(data)}")

@@ -26,6 +26,7 @@ from playwright.sync_api import Page, sync_playwright
 
 ROOT = Path(__file__).resolve().parents[2]
 LESSON = "02_scan_conversion.ipynb"
+EXERCISE = "exercises/05_span_rule.ipynb"
 SCREENSHOTS = Path(__file__).resolve().parent / "screenshots"
 CHROMIUM_FLAGS = [
     "--headless",
@@ -71,13 +72,20 @@ def _wait_until_answering(url, server, log_path):
 
 
 @pytest.fixture(scope="module")
-def lab_url(tmp_path_factory):
-    """Base URL of a JupyterLab serving a fresh copy of notebooks/, with the project's settings."""
-    tmp = tmp_path_factory.mktemp("lab")
-    root_dir = tmp / "notebooks"
+def lab_root(tmp_path_factory):
+    """A fresh copy of notebooks/ that JupyterLab serves; the exercise test edits its answer cell."""
+    root_dir = tmp_path_factory.mktemp("lab") / "notebooks"
     shutil.copytree(
         ROOT / "notebooks", root_dir, ignore=shutil.ignore_patterns(".*", "__pycache__")
     )
+    return root_dir
+
+
+@pytest.fixture(scope="module")
+def lab_url(lab_root):
+    """Base URL of a JupyterLab serving `lab_root`, with the project's settings."""
+    root_dir = lab_root
+    tmp = lab_root.parent
     env = dict(
         os.environ,
         # the news-popup override (see the Makefile's `lab` target), and no user settings
@@ -146,6 +154,12 @@ def _screenshot(page: Page, name):
     return path
 
 
+def _open(page: Page, lab_url, notebook):
+    page.set_default_timeout(30_000)
+    page.goto(f"{lab_url}/lab/tree/{notebook}", wait_until="domcontentloaded")
+    page.locator(".jp-NotebookPanel .jp-Cell").first.wait_for(timeout=60_000)
+
+
 def _run_all_cells(page: Page, notebook_stem):
     """Run > Run All Cells, then wait until every code cell has run and the kernel is idle."""
     page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for(timeout=60_000)
@@ -186,9 +200,7 @@ def _click_next(page: Page, stepper, times):
 
 def test_lesson_runs_and_steps_in_jupyterlab(lab_url, browser):
     page = browser.new_page()
-    page.set_default_timeout(30_000)
-    page.goto(f"{lab_url}/lab/tree/{LESSON}", wait_until="domcontentloaded")
-    page.locator(".jp-NotebookPanel .jp-Cell").first.wait_for(timeout=60_000)
+    _open(page, lab_url, LESSON)
     _run_all_cells(page, Path(LESSON).stem)
 
     steppers = page.locator(".jp-OutputArea-output").filter(
@@ -204,3 +216,42 @@ def test_lesson_runs_and_steps_in_jupyterlab(lab_url, browser):
     page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
     _screenshot(page, f"{Path(LESSON).stem}-stepped.png")
     assert after != before, f"the AET table did not change in {NEXT_CLICKS} steps:\n{before}"
+
+
+def _answer_with(path: Path, source: str) -> None:
+    """Put `source` into the notebook's answer cell (found by its marker, as the grader does)."""
+    import nbformat
+
+    notebook = nbformat.read(path, as_version=4)
+    (cell,) = [c for c in notebook.cells if c.source.startswith("# scanviz: answer ")]
+    cell.source = cell.source.split("\n", 1)[0] + "\n" + source
+    nbformat.write(notebook, path)
+
+
+def test_exercise_check_cell_shows_the_diagnostics_and_the_comparison(lab_root, lab_url, browser):
+    from scanviz.exercises import get
+
+    closed_span = next(v for v in get("span_rule").variants if v.name == "closed_span")
+    _answer_with(lab_root / EXERCISE, closed_span.source)
+    page = browser.new_page()
+    _open(page, lab_url, EXERCISE)
+    _run_all_cells(page, Path(EXERCISE).stem)
+    report = page.locator(".jp-OutputArea-output", has_text="hidden cases are graded later").first
+    text = report.inner_text()
+    assert "public cases 1 of 4" in text, text  # the clockwise square has no ties on the right
+    assert "likely cause: " + closed_span.hint in text
+    comparison = (
+        page.locator(".jp-OutputArea-output")
+        .filter(has=page.get_by_role("button", name="next difference"))
+        .first
+    )
+    comparison.scroll_into_view_if_needed()
+    yours = comparison.locator(".widget-html-content", has_text=re.compile(r"^yours \(\d+ events\)")).first
+    before = yours.inner_text()
+    comparison.get_by_role("button", name="next difference").click()
+    page.wait_for_function(
+        "([pane, before]) => pane.innerText !== before",
+        arg=[yours.element_handle(), before],
+        timeout=STEP_S * 1000,
+    )
+    _screenshot(page, f"{Path(EXERCISE).stem}-checked.png")

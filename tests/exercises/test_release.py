@@ -1,0 +1,63 @@
+"""Released notebooks: one per exercise, in the repository exactly as the catalog makes them."""
+
+from pathlib import Path
+
+import nbformat
+import pytest
+
+from scanviz.exercises import exercises
+from scanviz.exercises.release import (
+    ANSWER_MARKER,
+    build_notebook,
+    notebook_name,
+    notebook_text,
+    write_notebooks,
+)
+
+FOLDER = Path(__file__).parents[2] / "notebooks" / "exercises"
+
+
+def test_the_catalog_has_at_least_twelve_exercises_with_unique_ids():
+    catalog = exercises()
+    assert len(catalog) >= 12
+    assert len({e.id for e in catalog}) == len(catalog)
+    assert [e.number for e in catalog] == sorted(e.number for e in catalog)
+
+
+@pytest.mark.parametrize("exercise", exercises(), ids=lambda e: e.id)
+def test_repository_notebook_is_the_released_one(exercise):
+    path = FOLDER / notebook_name(exercise)
+    assert path.exists(), "run: python -m scanviz exercises release notebooks/exercises"
+    assert path.read_text(encoding="utf-8") == notebook_text(build_notebook(exercise)), (
+        f"{path.name} is out of date: python -m scanviz exercises release notebooks/exercises"
+    )
+
+
+def test_no_stray_notebooks_in_the_exercise_folder():
+    expected = {notebook_name(e) for e in exercises()}
+    assert {p.name for p in FOLDER.glob("*.ipynb")} == expected
+
+
+@pytest.mark.parametrize("exercise", exercises(), ids=lambda e: e.id)
+def test_answer_cell_starts_with_the_marker_and_holds_the_stub(exercise):
+    for with_solution, body in ((False, exercise.stub), (True, exercise.solution)):
+        notebook = build_notebook(exercise, with_solution=with_solution)
+        answers = [c for c in notebook.cells if c.source.startswith(ANSWER_MARKER)]
+        assert len(answers) == 1
+        first, rest = answers[0].source.split("\n", 1)
+        assert first == f"# scanviz: answer {exercise.id}"
+        assert rest.strip() == body.strip()
+
+
+def test_write_notebooks_writes_valid_notebooks(tmp_path):
+    paths = write_notebooks(tmp_path / "out", with_solutions=True)
+    assert [p.name for p in paths] == [notebook_name(e) for e in exercises()]
+    for path in paths:
+        nbformat.validate(nbformat.read(path, as_version=4))
+
+
+def test_write_notebooks_refuses_a_file_as_folder(tmp_path):
+    target = tmp_path / "file"
+    target.write_text("x")
+    with pytest.raises(NotADirectoryError, match="is not a folder"):
+        write_notebooks(target)
