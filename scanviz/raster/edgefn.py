@@ -17,6 +17,9 @@ positive -- the left edges and the lower horizontal edge. So a sample is in
 iff ``orientation * E_i >= bias_i`` for every edge, bias 0 for an owning edge
 and 1 otherwise. All coordinates are integers on the grid of
 `scanviz.raster.fixed`, so every decision is exact.
+
+The edge function of one edge and its ownership rule are the replaceable
+steps ``edge_function`` and ``owns_boundary`` (`scanviz.steps`).
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import steps
 from ..conventions import (
     SAMPLE_MODES,
     check_choice,
@@ -78,12 +82,42 @@ class EdgeFunction:
         return self.a * px + self.b * py + self.c
 
 
-def _edge_function(start: tuple[int, int], end: tuple[int, int], orientation: int) -> EdgeFunction:
+@steps.step(
+    "edge_function",
+    takes="an edge's start (x0, y0) and end (x1, y1), ints on the sub-pixel grid",
+    returns="(a, b, c) with E(p) = a px + b py + c: a = y0 - y1, b = x1 - x0, c = x0 y1 - x1 y0",
+)
+def edge_function(start: tuple[int, int], end: tuple[int, int]) -> tuple[int, int, int]:
+    """The edge function of the directed edge start -> end: positive on its left, zero on it.
+
+    >>> a, b, c = edge_function((0, 0), (4, 0))
+    >>> (a, b, c), a * 1 + b * 2 + c  # (1, 2) lies left of the edge
+    ((0, 4, 0), 8)
+    """
     (x0, y0), (x1, y1) = start, end
-    a, b = y0 - y1, x1 - x0
-    # The perturbed sample p + (eps, eps**2) is inside iff (a, b) leans to the inner side.
-    owns = orientation * (a if a else b) > 0
-    return EdgeFunction(a, b, x0 * y1 - x1 * y0, owns)
+    return y0 - y1, x1 - x0, x0 * y1 - x1 * y0
+
+
+@steps.step(
+    "owns_boundary",
+    takes="an edge's (a, b) and the triangle's orientation (+1 counter-clockwise, -1 clockwise)",
+    returns="whether a sample on the edge (E = 0) is inside: orientation * (a if a else b) > 0",
+)
+def owns_boundary(a: int, b: int, orientation: int) -> bool:
+    """The tie rule: the sample p on the edge is decided as p + (eps, eps**2), eps > 0 infinitesimal.
+
+    E(p + (eps, eps**2)) = a eps + b eps**2 has the sign of a, or of b on a
+    horizontal edge (a = 0); the sample is in iff that sign is the inner side's.
+
+    >>> owns_boundary(4, 0, 1), owns_boundary(0, 4, 1), owns_boundary(-4, -4, 1)  # left, bottom, right
+    (True, True, False)
+    """
+    return orientation * (a if a else b) > 0
+
+
+def _edge_function(start: tuple[int, int], end: tuple[int, int], orientation: int) -> EdgeFunction:
+    a, b, c = steps.get("edge_function")(start, end)
+    return EdgeFunction(a, b, c, steps.get("owns_boundary")(a, b, orientation))
 
 
 def _sample_range(values: list[int], scale: int, size: int) -> tuple[int, int]:
@@ -163,11 +197,11 @@ def triangle_samples(
     Agrees sample for sample with `scan_convert` on the same triangle: both
     apply the ownership rule of DESIGN §2 to the same snapped integers.
 
-    With a tracer, every sample of the clipped bounding box is tested, as the
-    textbook does, and each row's edge function values are recorded. Without
-    one, the fast path skips the samples outside each row's exact x-range:
-    the integer solution of ``orientation * E_i >= bias_i`` for the three
-    edges at that row. It evaluates the same integers at the samples it keeps,
+    With a tracer, or while a step of `scanviz.steps` is replaced, every
+    sample of the clipped bounding box is tested, as the textbook does, and a
+    tracer receives each row's edge function values. Otherwise the fast path
+    skips the samples outside each row's exact x-range: the integer solution
+    of ``orientation * E_i >= bias_i`` for the three edges at that row. It evaluates the same integers at the samples it keeps,
     so it returns the same samples and bit-identical weights, in time and
     memory proportional to the covered samples (a sliver across a 65536²
     box: milliseconds rather than minutes).
@@ -224,7 +258,7 @@ def _scan_bbox(snapped, width, height, tracer, polygon):
         return _no_samples()
     dtype = _exact_dtype(edges, bbox, scale)
     biases = [0 if e.owns_boundary else 1 for e in edges]
-    if tracer is None:
+    if tracer is None and not steps.replaced():
         found = _scan_row_ranges(edges, biases, orientation, scale, bbox, dtype, area2)
     else:
         found = _scan_blocks(edges, biases, orientation, scale, bbox, dtype, area2, tracer, polygon)
@@ -358,6 +392,8 @@ def _setup_event(snapped, units, edges, area2, orientation, bbox, polygon) -> Tr
 
 
 def _emit_rows(tracer, polygon, row, x_lo, x_hi, values, inside) -> None:
+    if tracer is None:  # untraced, with a step replaced: the textbook traversal, no events
+        return
     for r, covered in enumerate(inside):
         y = row + r
         if not tracer.wants("edge_function_row", polygon=polygon, y=y):

@@ -21,6 +21,10 @@ Coordinates here are in the *sample frame*: pixels with the sample of pixel
 (x, y) at (x, y), i.e. the grid of `scanviz.raster.fixed` divided by its
 scale, so a pixel index is a coordinate. Trace events use the caller's frame.
 
+The step from one sample of a span to the next is the replaceable step
+``span_step`` (`scanviz.steps`): the depth by dz/dx, compensated, and each
+value by d(value)/dx.
+
 The formulas (`depth_plane` to `perspective_divide`) are plain Python on
 floats and sequences; the compiled z-buffer (`scanviz.visibility.kernels`)
 compiles these same functions with numba, so both paths run one definition
@@ -35,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import steps
 from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
 from .fixed import SnappedPolygon
 from .scanline import ActiveEdge, _emit_row, _insertion_sort, bucketed_edge_table
@@ -243,6 +248,21 @@ def polygon_reaches_raster(snapped: SnappedPolygon, width: int, height: int) -> 
     return reaches_raster(min(xs), max(xs), min(ys), max(ys), snapped.scale, width, height)
 
 
+@steps.step(
+    "span_step",
+    takes="a span's depth z, its carry, its values (tuple of floats), and their steps dzdx, dvdx",
+    returns="(z, carry, values) one sample right: z by compensated_step, each value + its d/dx",
+)
+def span_step(z, carry, values, dzdx, dvdx):
+    """One sample to the right along a span: depth stepped by Kahan's sum, values by plain sums.
+
+    >>> span_step(1.0, 0.0, (0.5, 2.0), 0.25, (0.125, -1.0))
+    (1.25, 0.0, (0.625, 1.0))
+    """
+    z, carry = compensated_step(z, carry, dzdx)
+    return z, carry, tuple(v + d for v, d in zip(values, dvdx, strict=True))
+
+
 @dataclass(frozen=True)
 class InterpolatedSpan:
     """Samples [x_start, x_end) of row y between crossings x_left and x_right (sample frame).
@@ -261,12 +281,13 @@ class InterpolatedSpan:
     dvdx: tuple[float, ...]
 
     def samples(self) -> Iterator[tuple[int, float, tuple[float, ...]]]:
-        """Yield (x, z, values) per sample, stepping z += dz/dx (compensated) and values += d/dx."""
+        """Yield (x, z, values) per sample, each from the previous one by `span_step`."""
+        step = steps.get("span_step")
         z, z_carry, values = self.z, 0.0, self.values
         for x in range(self.x_start, self.x_end):
+            if x > self.x_start:
+                z, z_carry, values = step(z, z_carry, values, self.dzdx, self.dvdx)
             yield x, z, values
-            z, z_carry = compensated_step(z, z_carry, self.dzdx)
-            values = tuple(v + d for v, d in zip(values, self.dvdx, strict=True))
 
 
 class EdgeInterpolant:

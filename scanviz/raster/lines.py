@@ -24,6 +24,11 @@ Ties: d == 0 means the line passes exactly through the midpoint. The slides
 then step E, keeping the smaller y; scanviz keeps that rule in every octant --
 a tie takes the pixel with the smaller minor coordinate -- so the pixels do
 not depend on which endpoint comes first.
+
+The decision and its update are the replaceable step ``midpoint_step``
+(`scanviz.steps`), written in the first-octant frame: dx = the major extent,
+dy = the minor one. Where the minor axis points down, the loop sends a tie to
+the diagonal step itself.
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ import numbers
 
 import numpy as np
 
+from .. import steps
 from ..conventions import COORD_LIMIT, short_repr
 from ..trace import Tracer
 from ..trace.events import LineSetup, LineStep
@@ -45,6 +51,22 @@ def _check_endpoint(name: str, value: object) -> int:
             f"{name!r} must be within +-2**20 = {COORD_LIMIT}; got {short_repr(value)}"
         )
     return int(value)
+
+
+@steps.step(
+    "midpoint_step",
+    takes="d = 2 f(midpoint) and the first-octant extents dx >= dy >= 0 (ints)",
+    returns="(diagonal, next d): diagonal iff d < 0, then d + 2 (dx - dy); else d - 2 dy",
+)
+def midpoint_step(d: int, dx: int, dy: int) -> tuple[bool, int]:
+    """The midpoint decision and update, first octant: NE if the line passes above the midpoint.
+
+    >>> midpoint_step(1, 5, 2), midpoint_step(-3, 5, 2), midpoint_step(0, 4, 2)
+    ((False, -3), (True, 3), (False, -4))
+    """
+    if d < 0:  # the midpoint lies below the line: take the diagonal (NE) step
+        return True, d + 2 * (dx - dy)
+    return False, d - 2 * dy
 
 
 def octant(dx: int, dy: int) -> int:
@@ -128,19 +150,21 @@ def midpoint_line(
             tie_steps=tie_steps,
         )
         trace.emit(setup)
-    xs, ys = [], []
+    decide = steps.get("midpoint_step")
+    xs, ys = [x0], [y0]
     x, y = x0, y0
-    for i in range(major + 1):
-        xs.append(x)
-        ys.append(y)
-        diagonal = d < 0 or (d == 0 and tie_steps)  # the line passes beyond the midpoint
+    for _ in range(major):
+        diagonal, d_next = decide(d, major, minor)
+        if tie_steps and d == 0:  # the minor axis points down: a tie takes the diagonal step
+            diagonal, d_next = True, d + d_diagonal
         if trace is not None and trace.wants("line_step", y=y):
-            choice = "last" if i == major else "diagonal" if diagonal else "axial"
-            trace.emit(LineStep(x, y, d, choice))
+            trace.emit(LineStep(x, y, d, "diagonal" if diagonal else "axial"))
         x, y = x + axial_step[0], y + axial_step[1]
         if diagonal:
             x, y = x + minor_step[0], y + minor_step[1]
-            d += d_diagonal
-        else:
-            d += d_axial
+        d = d_next
+        xs.append(x)
+        ys.append(y)
+    if trace is not None and trace.wants("line_step", y=y):
+        trace.emit(LineStep(x, y, d, "last"))
     return np.array(xs, dtype=np.int64), np.array(ys, dtype=np.int64)

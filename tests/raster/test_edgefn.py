@@ -403,3 +403,48 @@ def test_issue8_d7_thin_triangle_in_a_huge_box_is_fast_enough():
         expected = np.array([[float(w) for w in ws] for ws in weights]).reshape(-1, 3)
         assert np.array_equal(cover.barycentric[on_row], expected), y
     assert len(_exact_row(triangle, 30000)[0]) == 1  # the oracle sees the sliver's one sample
+
+
+# --- the replaceable steps edge_function and owns_boundary ------------------------------------
+
+
+@settings(derandomize=True, max_examples=80, deadline=None)
+@given(st.lists(st.integers(-50, 50), min_size=4, max_size=4))
+def test_edge_function_is_zero_on_its_edge_and_positive_on_its_left(coordinates):
+    from scanviz.raster.edgefn import edge_function
+
+    x0, y0, x1, y1 = coordinates
+    a, b, c = edge_function((x0, y0), (x1, y1))
+    assert a * x0 + b * y0 + c == 0
+    assert a * x1 + b * y1 + c == 0
+    left = (x0 - (y1 - y0), y0 + (x1 - x0))  # the start moved by the direction turned +90 deg
+    assert a * left[0] + b * left[1] + c == (x1 - x0) ** 2 + (y1 - y0) ** 2
+
+
+def test_owns_boundary_decides_the_sample_moved_by_eps_and_eps_squared():
+    # Exact oracle: E(p + (eps, eps**2)) = a eps + b eps**2 for E(p) = 0; with |a|, |b| <= 9
+    # and eps = 1/100 the sign is that of the infinitesimal limit.
+    from scanviz.raster.edgefn import owns_boundary
+
+    eps = Fraction(1, 100)
+    for a in range(-9, 10):
+        for b in range(-9, 10):
+            if a == b == 0:
+                continue
+            for orientation in (1, -1):
+                moved = orientation * (a * eps + b * eps**2)
+                assert owns_boundary(a, b, orientation) == (moved > 0), (a, b, orientation)
+
+
+def test_untraced_triangle_samples_honours_a_replaced_step():
+    from scanviz import steps
+
+    triangle = [(0, 0), (4, 0), (0, 4)]  # the hypothesis samples (1, 3), (2, 2), (3, 1)
+    with steps.using(owns_boundary=lambda a, b, orientation: True):
+        closed = triangle_samples(triangle, 5, 5)
+        traced = triangle_samples(triangle, 5, 5, trace=True)
+    default = triangle_samples(triangle, 5, 5)
+    on_hypotenuse = {(1, 3), (2, 2), (3, 1)}
+    as_set = lambda found: set(zip(found.xs.tolist(), found.ys.tolist(), strict=True))  # noqa: E731
+    assert as_set(closed) == as_set(traced) == as_set(default) | on_hypotenuse
+    assert not as_set(default) & on_hypotenuse

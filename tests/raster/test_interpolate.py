@@ -213,3 +213,37 @@ def test_events_show_the_formulas_they_ran():
     assert [e.kind for e in trace if getattr(e, "y", None) == 3] == [
         "edges_retired", "edges_activated", "aet_sorted", "span", "edge_values", "span_values"
     ]  # fmt: skip
+
+
+# --- the replaceable step span_step -----------------------------------------------------------
+
+
+def test_span_step_compensates_the_depth_and_adds_the_values():
+    from scanviz.raster.interpolate import span_step
+
+    z, carry, values = 0.9, 0.0, (0.0, 1.0)
+    plain = 0.9
+    for _ in range(1000):
+        z, carry, values = span_step(z, carry, values, 1e-4, (0.1, -0.001))
+        plain += 1e-4
+    exact = Fraction(0.9) + 1000 * Fraction(1e-4)
+    assert abs(Fraction(z) - exact) <= abs(Fraction(plain) - exact)
+    assert abs(Fraction(z) - exact) <= Fraction(2**-52)  # within an ulp of 1
+    plain_values = (0.0, 1.0)
+    for _ in range(1000):
+        plain_values = (plain_values[0] + 0.1, plain_values[1] - 0.001)
+    assert values == plain_values  # the values are plain sums, in order
+
+
+def test_span_samples_take_their_step_from_the_step_table():
+    from scanviz import steps
+    from scanviz.raster.interpolate import InterpolatedSpan
+
+    span = InterpolatedSpan(0, 2, 6, 1.5, 6.5, 0.25, 0.5, (1.0,), (0.125,))
+    assert [(x, z, v) for x, z, v in span.samples()][-1] == (
+        5,
+        1.75,
+        (1.375,),
+    )  # three steps from x = 2
+    with steps.using(span_step=lambda z, carry, values, dzdx, dvdx: (z, carry, values)):
+        assert [(x, z, v) for x, z, v in span.samples()] == [(x, 0.25, (1.0,)) for x in range(2, 6)]

@@ -206,3 +206,45 @@ def test_trace_must_be_a_tracer():
 def test_issue8_d9_endpoints_must_be_ints_within_the_limit(value, error, message):
     with pytest.raises(error, match=message):
         midpoint_line(0, 0, value, 0)
+
+
+# --- the replaceable step midpoint_step -----------------------------------------------------
+
+
+def doubled_f(dx: int, dy: int, x: Fraction, y: Fraction) -> Fraction:
+    """2 f(x, y) of the slides for the line from (0, 0) to (dx, dy)."""
+    return 2 * (-dy * x + dx * y)
+
+
+@settings(derandomize=True, max_examples=60, deadline=None)
+@given(st.integers(1, 40).flatmap(lambda dx: st.tuples(st.just(dx), st.integers(0, dx))))
+def test_midpoint_step_is_the_slides_update_of_2f_at_the_midpoint(extents):
+    # Exact oracle: d is 2 f at the midpoint (x + 1, y + 1/2) of each pixel of the
+    # first-octant line; the step picks NE iff d < 0 and returns 2 f at the next midpoint.
+    from scanviz.raster.lines import midpoint_step
+
+    dx, dy = extents
+    x, y = 0, 0
+    d = doubled_f(dx, dy, Fraction(1), Fraction(1, 2))
+    for _ in range(dx):
+        diagonal, d_next = midpoint_step(int(d), dx, dy)
+        assert diagonal == (d < 0)
+        x, y = x + 1, y + diagonal
+        assert d_next == doubled_f(dx, dy, Fraction(x + 1), y + Fraction(1, 2))
+        d = d_next
+
+
+def test_midpoint_line_takes_its_decisions_from_the_step_table():
+    from scanviz import steps
+
+    calls = []
+
+    def always_diagonal(d, dx, dy):
+        calls.append((d, dx, dy))
+        return True, d
+
+    with steps.using(midpoint_step=always_diagonal):
+        assert pixels(0, 0, 6, -2) == [(k, -k) for k in range(7)]
+        assert pixels(3, 1, 1, 5) == [(3, 1), (2, 2), (1, 3), (0, 4), (-1, 5)]
+    assert calls[:2] == [(2, 6, 2), (2, 6, 2)]  # d = 6 - 2 * 2, in the first-octant frame
+    assert len(calls) == 6 + 4  # one decision per pixel but the last
