@@ -10,8 +10,10 @@ coverage 1) or a *list*. Inserting a fragment (§6.3.4-6.3.5):
 3. discard every fragment behind the first complete opaque one; if that one
    heads the list, the pixelstruct is simple again.
 
-`pack` collapses a list into a color and a coverage (§6.3.6, eqs. 6.4-6.6),
-recursing on regions of the pixel (a mask M_Q and its weight Q).
+`pack_pixel` collapses a list into a color and a coverage (§6.3.6, eqs.
+6.4-6.6), recursing on regions of the pixel (a mask M_Q and its weight Q).
+Both are replaceable steps (`scanviz.steps`): the loop `resolve_reference`
+calls them through the step table and traces what they return.
 `scanviz.abuffer.kernels` is the compiled twin of this module.
 """
 
@@ -21,6 +23,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .. import steps
 from ..trace.events import (
     CoverageBlended,
     FragmentInserted,
@@ -30,6 +33,7 @@ from ..trace.events import (
     PackStep,
     PixelPacked,
 )
+from ..trace.schema import shown
 
 SAME_SURFACE_TOLERANCE = 1e-12  # colors and opacities this close belong to one surface
 EMPTY, SIMPLE, LIST = "empty", "simple", "list"
@@ -187,41 +191,71 @@ def insert_sorted(fragments: list[FragmentRecord], fragment: FragmentRecord) -> 
     fragments.insert(position, fragment)
 
 
-def insert_fragment(fragments, incoming, full, stats, trace=None, *, x=0, y=0, polygon=0, index=0):
-    """Insert `incoming` into one pixelstruct's list (in place): combine, sort, discard.
+@steps.step(
+    "insert_fragment",
+    takes="a pixel's fragment list (FragmentRecords, nearest first), the incoming fragment, "
+    "the full mask",
+    returns="(the new list, (stored, combined) if it merged else None, the fragments discarded)",
+)
+def insert_fragment(fragments, incoming, full):
+    """Carpenter's insertion of `incoming` into one pixel's list: combine, sort, discard.
+
+    Returns ``(fragments, merged, discarded)``: the new list, nearest first;
+    ``(stored, combined)`` if `incoming` was combined with a stored fragment
+    of its surface, else None; the fragments thrown away behind the first
+    complete opaque one, nearest first.
 
     Examples
     --------
-    >>> stats, full = ABufferStats(), 0b1111
+    >>> full = 0b1111
     >>> left = FragmentRecord(0.5, 0.5, 0.5, 0b0101, (1.0, 1.0, 1.0), 1.0, 7)
-    >>> pixel = [left]
-    >>> insert_fragment(pixel, replace(left, mask=0b1010), full, stats)
-    >>> pixelstruct_kind(pixel, full), pixel[0].mask, pixel[0].area, stats.fragments_merged
-    ('simple', 15, 1.0, 1)
+    >>> pixel, merged, discarded = insert_fragment([left], replace(left, mask=0b1010), full)
+    >>> pixelstruct_kind(pixel, full), pixel[0].mask, pixel[0].area, merged[0] == left, discarded
+    ('simple', 15, 1.0, True, ())
     """
-    before = tuple(fragments)
-    before_kind = pixelstruct_kind(fragments, full)
-    case = ("complete_" if is_complete(incoming, full) else "partial_") + before_kind
-    events = []
-    placed = incoming
+    fragments = list(fragments)
+    merged, placed = None, incoming
     partner = next((f for f in fragments if same_surface(f, incoming, full)), None)
     if partner is not None:
         fragments.remove(partner)
         placed = combine(partner, incoming)
-        stats.fragments_merged += 1
-        events.append(FragmentsMerged(x, y, polygon, partner, incoming, placed))
+        merged = (partner, placed)
     insert_sorted(fragments, placed)
     front = next((i for i, f in enumerate(fragments) if hides_behind(f, full)), len(fragments))
-    if front + 1 < len(fragments):  # fragments behind a complete opaque one are never seen
-        discarded = tuple(fragments[front + 1 :])
-        del fragments[front + 1 :]
+    return fragments[: front + 1], merged, tuple(fragments[front + 1 :])
+
+
+def insert_into(pixel, incoming, full, stats, trace=None, *, x=0, y=0, polygon=0, index=0):
+    """Insert `incoming` into pixel (x, y)'s list `pixel` (in place) by step ``insert_fragment``.
+
+    The stats and the events (``fragment_inserted``, ``fragments_merged``,
+    ``fragments_discarded``) are what the step returned: a replaced step's
+    decisions show in the trace.
+    """
+    before = tuple(pixel)
+    before_kind = pixelstruct_kind(before, full)
+    after, merged, discarded = returned(
+        "insert_fragment", steps.get("insert_fragment")(list(before), incoming, full), 3
+    )
+    pixel[:] = after
+    events = []
+    if merged is not None:
+        stored, combined = merged
+        stats.fragments_merged += 1
+        events.append(FragmentsMerged(x, y, polygon, stored, incoming, combined))
+    if discarded:  # the fragment they hide behind is the last one kept
+        if not pixel:
+            raise ValueError(
+                f"step 'insert_fragment' discarded {len(discarded)} fragments of pixel "
+                f"({x}, {y}) and kept none in front of them"
+            )
         stats.fragments_discarded += len(discarded)
-        events.append(FragmentsDiscarded(x, y, polygon, fragments[front], discarded))
+        events.append(FragmentsDiscarded(x, y, polygon, pixel[-1], tuple(discarded)))
     stats.fragments_inserted += 1
-    stats.longest_list = max(stats.longest_list, len(fragments))
+    stats.longest_list = max(stats.longest_list, len(pixel))
     if trace is None:
         return
-    after = tuple(fragments)
+    case = ("complete_" if is_complete(incoming, full) else "partial_") + before_kind
     events.insert(
         0,
         FragmentInserted(
@@ -233,8 +267,8 @@ def insert_fragment(fragments, incoming, full, stats, trace=None, *, x=0, y=0, p
             case,
             before_kind,
             before,
-            pixelstruct_kind(fragments, full),
-            after,
+            pixelstruct_kind(pixel, full),
+            tuple(pixel),
         ),  # fmt: skip
     )
     for event in events:
@@ -263,17 +297,25 @@ def covered_weight(fragment, region, weight, full, samples, weights) -> float:
     return weight * covered.bit_count() / visible if visible else 0.0
 
 
-def pack(fragments, full, samples, weights, background, steps=None):
-    """Collapse a fragment list into (color, alpha): eqs. 6.4-6.6 on regions of the pixel.
+@steps.step(
+    "pack_pixel",
+    takes="a pixel's fragment list (nearest first), the full mask, the number of sub-samples, "
+    'the weights ("mask" or "area"), the background color',
+    returns="(color, alpha, the PackSteps in the order the recursion finishes them)",
+)
+def pack_pixel(fragments, full, samples, weights, background):
+    """Collapse a fragment list into (color, alpha, steps): eqs. 6.4-6.6 on regions of the pixel.
 
-    `steps`, if a list, receives a `PackStep` per level and region.
+    `steps` holds a `PackStep` per level and region, deepest first.
 
     Examples
     --------
     >>> red = FragmentRecord(0.0, 0.0, 0.25, 0b0011, (1.0, 0.0, 0.0), 1.0, 0)
-    >>> pack([red], 0b1111, 4, "mask", (0.0, 0.0, 1.0))
-    ((0.5, 0.0, 0.5), 0.5)
+    >>> color, alpha, steps = pack_pixel([red], 0b1111, 4, "mask", (0.0, 0.0, 1.0))
+    >>> color, alpha, [(s.region, s.mask_a, s.a, s.mask_q, s.q) for s in steps]
+    ((0.5, 0.0, 0.5), 0.5, [(15, 3, 0.5, 12, 0.5)])
     """
+    records = []
 
     def region_color(level, region, weight, branch):
         """The region's color times its weight, and the background's share of it."""
@@ -295,14 +337,13 @@ def pack(fragments, full, samples, weights, background, steps=None):
                 for p, s, t in zip(fragment.color, seen, behind, strict=True)
             )
             share += seen_share * through
-        if steps is not None:
-            steps.append(
-                PackStep(level, branch, fragment, region, weight, covered, a, uncovered, q, color)
-            )
+        records.append(
+            PackStep(level, branch, fragment, region, weight, covered, a, uncovered, q, color)
+        )
         return color, share
 
     color, share = region_color(0, full, 1.0, "")
-    return color, 1.0 - share
+    return color, 1.0 - share, tuple(records)
 
 
 def resolve_reference(fragments, width, height, full, samples, weights, background, mode, trace):
@@ -314,7 +355,7 @@ def resolve_reference(fragments, width, height, full, samples, weights, backgrou
     lists: dict[tuple[int, int], list[FragmentRecord]] = {}
     for i in range(fragments.count):
         x, y, polygon = int(fragments.x[i]), int(fragments.y[i]), int(fragments.polygon[i])
-        insert_fragment(
+        insert_into(
             lists.setdefault((x, y), []), record(fragments, i), full, stats, trace,
             x=x, y=y, polygon=polygon, index=i,
         )  # fmt: skip
@@ -328,13 +369,25 @@ def resolve_reference(fragments, width, height, full, samples, weights, backgrou
             image[y, x], alpha[y, x] = pixel_list[0].color, 1.0
             continue
         stats.pixels_list += 1
-        steps = [] if trace is not None and trace.wants("pixel_packed", y=y) else None
-        color, alpha[y, x] = pack(pixel_list, full, samples, weights, background, steps)
+        color, alpha[y, x], packed = returned(
+            "pack_pixel",
+            steps.get("pack_pixel")(list(pixel_list), full, samples, weights, background),
+            3,
+        )
         image[y, x] = color
-        if steps is not None:
-            trace.emit(PixelPacked(x, y, weights, tuple(steps), color, float(alpha[y, x])))
+        if trace is not None and trace.wants("pixel_packed", y=y):
+            color = tuple(float(c) for c in color)
+            trace.emit(PixelPacked(x, y, weights, tuple(packed), color, float(alpha[y, x])))
     stats.pixels_empty = width * height - stats.pixels_simple - stats.pixels_list
     return Resolved(image, alpha, stats, FragmentTable.from_lists(lists, width, height))
+
+
+def returned(step: str, value: object, count: int) -> tuple:
+    """What step `step` returned, checked to be `count` values (a replaced step may not be)."""
+    if not isinstance(value, tuple) or len(value) != count:
+        table = {s.name: s.returns for s in steps.table()}
+        raise TypeError(f"step {step!r} must return {table[step]}; got {shown(value)}")
+    return value
 
 
 def record(fragments, i: int) -> FragmentRecord:

@@ -10,7 +10,8 @@ fragment, the packer collapses each fragment list into a color and a coverage
 z-buffer the thesis opens §6.3 with, which leaves seams between polygons.
 
 Without a tracer the compiled twin (`scanviz.abuffer.kernels`) runs; with one,
-the traced reference (`scanviz.abuffer.pixelstruct`). They give the same
+or while a step of `scanviz.steps` is replaced, the traced reference
+(`scanviz.abuffer.pixelstruct`). They give the same
 fragment lists and stats, and images equal to 1e-12. See docs/abuffer.md.
 """
 
@@ -21,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import steps
 from ..conventions import check_choice, check_raster_size
 from ..limits import check_memory
 from ..raster.api import as_tracer
@@ -257,7 +259,8 @@ def resolve(
     mode : {"abuffer", "flawed"}
         The a-buffer, or the coverage-blending z-buffer of thesis §6.3.
     trace : None, True, or Tracer
-        None runs the compiled kernel; a tracer (True for a new `Recorder`)
+        None runs the compiled kernel (the reference while `scanviz.steps`
+        has a replaced step); a tracer (True for a new `Recorder`)
         runs the traced reference: ``fragment_inserted``, ``fragments_merged``,
         ``fragments_discarded`` and ``pixel_packed`` (or ``coverage_blended``).
 
@@ -311,7 +314,7 @@ def resolve(
         width * height * RESOLVE_PIXEL_BYTES + fragments.count * RESOLVE_FRAGMENT_BYTES,
         f"resolving {fragments.count} fragments on a {width}x{height} a-buffer",
     )
-    if tracer is None:
+    if tracer is None and not steps.replaced():  # the kernel has no step table
         result = kernels.resolve_compiled(
             fragments, width, height, full, cols * rows, weights, background, mode
         )
