@@ -1,1 +1,237 @@
-"""Placeholder: exercises of this stage are being written."""
+"""Exercise on the z-buffer's depth test (scanviz.visibility.zbuffer), through `render`.
+
+The cases are flat polygons in the UMBC slides' coordinates (x, y in pixels,
+z a depth, smaller = nearer) seen 1:1 by an orthographic camera, as the
+builtin ``umbc_zbuffer`` scene: display x, y are the case's x, y and the
+depth the z-buffer compares is z / 16, exact in binary, so ties are exact.
+"""
+
+from __future__ import annotations
+
+import random
+
+import numpy as np
+
+from .. import steps
+from ..pipeline import render
+from ..scene import Camera, Material, Mesh, Scene, SceneObject
+from ..visibility.zbuffer import depth_test
+from .cases import grid_value, polygon
+from .catalog import register
+from .core import Case, Exercise, Variant
+
+DEPTH_RANGE = 16.0  # the camera's far plane: depths z in [0, 16) are z / 16 in the buffer
+COLORS = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0))
+_MIRROR = np.diag([1.0, 1.0, -1.0, 1.0])  # slide space (z into the screen) -> right-handed world
+
+
+def case_scene(inputs: dict) -> Scene:
+    """The scene of a case: its polygons of (x, y, z) as flat colors, seen 1:1 from the front."""
+    width, height = inputs["width"], inputs["height"]
+    objects = tuple(
+        SceneObject(
+            Mesh(
+                np.array(vertices, float),
+                (tuple(range(len(vertices))),),
+                smooth=False,
+                closed=False,
+            ),
+            Material(color=COLORS[k % len(COLORS)], ambient=1.0, diffuse=0.0, specular=0.0),
+            _MIRROR,
+            f"polygon {k}",
+        )
+        for k, vertices in enumerate(inputs["polygons"])
+    )
+    camera = Camera(
+        eye=(0, 0, 0),
+        look_at=(0, 0, -1),
+        up=(0, 1, 0),
+        window=(0, width, 0, height),
+        near=0.0,
+        far=DEPTH_RANGE,
+        projection="orthographic",
+    )
+    return Scene(objects, camera, lights=(), ambient=(1, 1, 1))
+
+
+def _render_with(fn, inputs, tracer):
+    with steps.using(depth_test=fn):
+        return render(
+            case_scene(inputs), inputs["width"], inputs["height"], shading="flat", trace=tracer
+        )
+
+
+def _pixel_of_call(index: int, trace: list) -> str:
+    tests = [e for e in trace if e.kind == "depth_test"]
+    if index >= len(tests):
+        return f"call {index + 1}"
+    test = tests[index]
+    return f"polygon {test.polygon} at pixel ({test.x}, {test.y})"
+
+
+def _depths(rng: random.Random, vertices: list, flat: bool) -> list:
+    """(x, y, z) of a polygon: constant depth on quarter units (ties, 0) or a gentle slope."""
+    if flat:
+        z = grid_value(rng, 0, 12)
+        return [[x, y, z] for x, y in vertices]
+    z0, dx, dy = grid_value(rng, 4, 8), rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4)
+    return [[x, y, min(max(z0 + dx * x + dy * y, 0.0), 15.0)] for x, y in vertices]
+
+
+def _zbuffer_case(rng: random.Random) -> Case:
+    width, height = rng.randint(6, 12), rng.randint(6, 12)
+    category = rng.choice(("flat, ties", "sloped, piercing", "mixed", "nearest first"))
+    shapes = [polygon(rng, width, height) for _ in range(rng.randint(2, 4))]
+    polygons = []
+    for k, (_, vertices) in enumerate(shapes):
+        flat = category == "flat, ties" or (category == "mixed" and k % 2 == 0)
+        if category == "nearest first":
+            flat = True
+        polygons.append(_depths(rng, vertices, flat and category != "sloped, piercing"))
+    if category == "flat, ties":  # some polygons at exactly the same depth
+        for later in polygons[1:]:
+            if rng.random() < 0.5:
+                for vertex in later:
+                    vertex[2] = polygons[0][0][2]
+    if category == "nearest first":  # the first polygon on the near plane, z = 0
+        for vertex in polygons[0]:
+            vertex[2] = 0.0
+    features = ", ".join(sorted({feature for feature, _ in shapes}))
+    return Case(
+        f"{category}: {features}",
+        {"polygons": polygons, "width": width, "height": height},
+        category,
+    )
+
+
+DEPTH_TEST_SOLUTION = """\
+def depth_test(z, stored):
+    if stored is None:
+        return True
+    return z < stored
+"""
+
+
+def _depth_variant(name: str, hint: str, old: str, new: str) -> Variant:
+    assert old in DEPTH_TEST_SOLUTION, old
+    return Variant(name, hint, DEPTH_TEST_SOLUTION.replace(old, new))
+
+
+register(
+    Exercise(
+        id="zbuffer_depth",
+        number=10,
+        title="The z-buffer's depth test",
+        stage="visibility",
+        kind="step",
+        points=2,
+        answer="depth_test",
+        idea=(
+            "The z-buffer (Catmull) draws the polygons in any order and keeps, per sample, the "
+            "nearest fragment so far. Each polygon's depth is interpolated along its spans; at "
+            "every sample it covers, the **depth test** compares the fragment's depth z with "
+            "the depth stored there and writes the fragment only if it is nearer.\n\n"
+            "In scanviz **smaller z is nearer**. The buffer starts empty (+inf: here `stored` "
+            "is None) and any fragment wins an empty sample. On a **tie** the stored fragment "
+            "stays: the earlier polygon keeps the sample."
+        ),
+        stub=(
+            "def depth_test(z, stored):\n"
+            '    """z: the incoming fragment\'s depth (float, smaller is nearer).\n'
+            "    stored: the depth stored at that sample (float), or None if nothing was drawn\n"
+            "    there yet.\n"
+            "    Return True if the fragment is written (it is nearer than the stored one, or the\n"
+            '    sample is empty), False if it is hidden; on a tie the stored fragment stays."""\n'
+            "    raise NotImplementedError\n"
+        ),
+        solution=DEPTH_TEST_SOLUTION,
+        call=_render_with,
+        reference=depth_test,
+        public=(
+            Case(
+                "the UMBC slide: a triangle piercing another",
+                {
+                    "polygons": [
+                        [[1, 1, 5], [7, 7, 5], [1, 7, 5]],
+                        [[3, 5, 9], [10, 5, 9], [10, 9, 9], [3, 9, 9]],
+                        [[2, 6, 3], [2, 3, 8], [7, 3, 3]],
+                    ],
+                    "width": 12,
+                    "height": 10,
+                },
+            ),
+            Case(
+                "two overlapping squares at the same depth, a third behind",
+                {
+                    "polygons": [
+                        [[1, 1, 8], [5, 1, 8], [5, 5, 8], [1, 5, 8]],
+                        [[3, 3, 8], [7, 3, 8], [7, 7, 8], [3, 7, 8]],
+                        [[2, 2, 12], [6, 2, 12], [6, 6, 12], [2, 6, 12]],
+                    ],
+                    "width": 8,
+                    "height": 8,
+                },
+            ),
+            Case(
+                "a square on the near plane z = 0, then squares behind and before the next",
+                {
+                    "polygons": [
+                        [[1, 1, 0], [4, 1, 0], [4, 4, 0], [1, 4, 0]],
+                        [[3, 3, 4], [7, 3, 4], [7, 7, 4], [3, 7, 4]],
+                        [[6, 1, 6], [8, 1, 6], [8, 5, 6], [6, 5, 6]],
+                        [[4, 6, 2], [6, 6, 2], [6, 8, 2], [4, 8, 2]],
+                    ],
+                    "width": 8,
+                    "height": 8,
+                },
+            ),
+        ),
+        generate=_zbuffer_case,
+        variants=(
+            _depth_variant(
+                "no_depth_test",
+                "every fragment is written, so the last polygon drawn wins (the painter's order): "
+                "write only if z < stored",
+                "    return z < stored\n",
+                "    return True\n",
+            ),
+            _depth_variant(
+                "swapped_comparison",
+                "smaller z is nearer in scanviz: write when z < stored, not z > stored",
+                "return z < stored",
+                "return z > stored",
+            ),
+            _depth_variant(
+                "ties_to_later",
+                "on a tie the stored fragment stays (the earlier polygon keeps the sample): "
+                "z < stored, not z <= stored",
+                "return z < stored",
+                "return z <= stored",
+            ),
+            _depth_variant(
+                "empty_never_written",
+                "an empty sample (stored None, the buffer's +inf) takes any fragment: return True",
+                "    if stored is None:\n        return True\n",
+                "    if stored is None:\n        return False\n",
+            ),
+            _depth_variant(
+                "zero_depth_as_empty",
+                "`not stored` is also true for a stored depth of 0.0 (the near plane): test "
+                "`stored is None` for an empty sample",
+                "if stored is None:",
+                "if not stored:",
+            ),
+        ),
+        kinds=("depth_test",),
+        step="depth_test",
+        place=_pixel_of_call,
+        result=lambda result: result.polygon.tolist(),
+        raster=lambda result: result.polygon >= 0,
+        stepper=(
+            "from scanviz.exercises.zbuffer import case_scene\n"
+            "from scanviz.widgets import zbuffer_stepper\n"
+            "zbuffer_stepper(case_scene(CASE), CASE['width'], CASE['height'], shading='flat')"
+        ),
+        banned=("scanviz.visibility.zbuffer", "depth_test", "zbuffer_reference"),
+    )
+)

@@ -19,13 +19,15 @@ Outcodes (Cohen-Sutherland) set bit i when a vertex is outside plane
 ``CLIP_PLANES[i]``. A polygon whose outcodes are all 0 is trivially accepted
 and returned as is; one whose outcodes share a bit lies outside that plane
 and is trivially rejected. Only the planes some vertex is outside are clipped
-against: the others cannot cut a convex combination of inside points.
+against: the others cannot cut a convex combination of inside points. Each
+of those passes is the replaceable step ``clip_against_plane`` (`scanviz.steps`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .. import steps
 from ..trace.events import PolygonClipped
 from ._checks import as_points, check_tracer, flatten_faces
 
@@ -42,7 +44,6 @@ PLANE_DISTANCES = np.array(
         [0.0, -1.0, 0.0, 1.0],
     ]
 )
-_PLANE_AXIS = (2, 2, 0, 0, 1, 1)  # the coordinate each plane bounds
 
 
 def _outcodes(points: np.ndarray) -> np.ndarray:
@@ -99,27 +100,80 @@ def classify(clip_points: object, faces: object) -> np.ndarray:
     return np.where(all_outside != 0, "reject", np.where(any_outside == 0, "accept", "clip"))
 
 
-def _clip_to_plane(rows: np.ndarray, plane: int) -> np.ndarray:
-    """One Sutherland-Hodgman pass: rows are (x, y, z, w, attributes...) of a closed polygon."""
-    distance = rows[:, :4] @ PLANE_DISTANCES[plane]
-    start, start_distance = np.roll(rows, 1, axis=0), np.roll(distance, 1)
-    # The edge start -> vertex crosses the plane only on a strict sign change.
-    crossing = np.sign(start_distance) * np.sign(distance) < 0
-    # Interpolate from the inside end, so a shared edge gives the same point in both polygons.
-    start_inside = start_distance[crossing] > 0
-    inner = np.where(start_inside[:, None], start[crossing], rows[crossing])
-    outer = np.where(start_inside[:, None], rows[crossing], start[crossing])
-    d_inner = np.where(start_inside, start_distance[crossing], distance[crossing])
-    d_outer = np.where(start_inside, distance[crossing], start_distance[crossing])
-    t = d_inner / (d_inner - d_outer)
-    new = inner + t[:, None] * (outer - inner)
-    axis, coefficients = _PLANE_AXIS[plane], PLANE_DISTANCES[plane]
-    new[:, axis] = -coefficients[3] * new[:, 3] / coefficients[axis]  # exactly on the plane
-    # Each vertex contributes the crossing of the edge that ends at it, then itself if inside.
-    candidates = np.stack([rows, rows], axis=1)
-    candidates[crossing, 0] = new
-    keep = np.column_stack([crossing, distance >= 0])
-    return candidates[keep]
+@steps.step(
+    "clip_against_plane",
+    takes="a polygon's vertices [(x, y, z, w, attributes...), ...] in order and a plane "
+    "(a, b, c, d): signed distance a x + b y + c z + d w, >= 0 inside",
+    returns="the vertices of its part inside the plane, in order (one Sutherland-Hodgman stage)",
+)
+def clip_against_plane(vertices: list, plane: tuple) -> list:
+    """One Sutherland-Hodgman stage: clip a closed polygon to the half-space of `plane`.
+
+    Each edge (S, P), from the previous vertex S to the vertex P (the first
+    edge starts at the last vertex), contributes its crossing of the plane if
+    S and P lie strictly on opposite sides, then P if P is inside (distance
+    >= 0). A crossing interpolates every column, attributes included, with
+    the same t, from the inside end (so an edge shared by two polygons gives
+    both the same point); a plane bounding one coordinate puts it exactly on it.
+
+    Examples
+    --------
+    The right plane x = w, distance w - x, cuts the tip off a triangle:
+
+    >>> clip_against_plane([(0, 0, 0, 1, 0), (3, 0, 0, 1, 3), (0, 1, 0, 1, 0)], (-1, 0, 0, 1))
+    [(0, 0, 0, 1, 0), (1.0, 0.0, 0.0, 1.0, 1.0), (1.0, 0.6666666666666667, 0.0, 1.0, 1.0), (0, 1, 0, 1, 0)]
+    """
+    a, b, c, d = plane
+    distances = [a * v[0] + b * v[1] + c * v[2] + d * v[3] for v in vertices]
+    bounded = [k for k in range(3) if plane[k] != 0]
+    clipped: list = []
+    start, start_distance = vertices[-1], distances[-1]
+    for vertex, distance in zip(vertices, distances, strict=True):
+        if start_distance < 0 < distance or distance < 0 < start_distance:  # a strict crossing
+            inner, d_inner, outer, d_outer = (
+                (start, start_distance, vertex, distance)
+                if start_distance > 0
+                else (vertex, distance, start, start_distance)
+            )
+            t = d_inner / (d_inner - d_outer)
+            crossing = [p + t * (q - p) for p, q in zip(inner, outer, strict=True)]
+            if len(bounded) == 1:  # exactly on the plane
+                crossing[bounded[0]] = -d * crossing[3] / plane[bounded[0]]
+            clipped.append(tuple(crossing))
+        if distance >= 0:
+            clipped.append(vertex)
+        start, start_distance = vertex, distance
+    return clipped
+
+
+def _clip_to_planes(rows: np.ndarray, planes: int) -> tuple[np.ndarray, list[int]]:
+    """Rows (x, y, z, w, attributes...) clipped to every plane whose bit is set in `planes`.
+
+    Also returns the vertex count after each plane of `CLIP_PLANES`.
+    """
+    clip = steps.get("clip_against_plane")
+    vertices = [tuple(row) for row in rows.tolist()]
+    counts = []
+    for plane in range(len(CLIP_PLANES)):
+        if planes >> plane & 1 and vertices:
+            vertices = clip(vertices, tuple(PLANE_DISTANCES[plane].tolist()))
+            if not isinstance(vertices, list | tuple):
+                raise TypeError(
+                    "the 'clip_against_plane' step must return a list of vertices; "
+                    f"got {type(vertices).__name__}"
+                )
+        counts.append(len(vertices))
+    if not vertices:
+        return rows[:0], counts
+    try:
+        clipped = np.array(vertices, dtype=np.float64)
+    except (TypeError, ValueError):
+        clipped = None
+    if clipped is None or clipped.shape[1:] != rows.shape[1:]:
+        raise ValueError(
+            f"the 'clip_against_plane' step must return vertices of {rows.shape[1]} numbers each"
+        )
+    return clipped, counts
 
 
 def clip_polygon(clip_points: object, attributes: object = None, *, trace=None, polygon: int = 0):
@@ -179,10 +233,7 @@ def clip_polygon(clip_points: object, attributes: object = None, *, trace=None, 
         if np.bitwise_and.reduce(codes):
             rows = rows[:0]  # every vertex outside one plane
         else:
-            for plane in range(len(CLIP_PLANES)):
-                if outside >> plane & 1 and len(rows):
-                    rows = _clip_to_plane(rows, plane)
-                counts.append(len(rows))
+            rows, counts = _clip_to_planes(rows, outside)
         if len(rows) < 3:
             rows = rows[:0]  # a point or a segment covers nothing
         verdict = "clipped" if len(rows) else "rejected"

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import steps
 from ..scene import Camera
 from ..scene.faces import face_corners, newell
 from ..trace.events import FaceCulled
@@ -57,6 +58,29 @@ def face_normals(positions: object, faces: object) -> np.ndarray:
     return newell(positions, face_corners(faces, len(positions)))[0]
 
 
+@steps.step(
+    "back_face_test",
+    takes="a face's Newell normal N and its viewing vector V (eye to face, or the view "
+    "direction): two (x, y, z) tuples of floats",
+    returns="True if the face is culled: it turns away, V . N >= 0, and N is not zero",
+)
+def back_face_test(normal: tuple, view: tuple) -> bool:
+    """Whether a face with outward normal `normal`, seen along `view`, is back-facing.
+
+    Examples
+    --------
+    >>> back_face_test((0.0, 0.0, 4.0), (0.0, 0.0, -5.0)), back_face_test((4.0, 0.0, 0.0), (0.0, 0.0, -5.0))
+    (False, True)
+    """
+    dot = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2]
+    return dot >= 0 and any(normal)  # edge-on (dot = 0) is culled; a zero normal has no back
+
+
+def _dots(normals: np.ndarray, views: np.ndarray) -> np.ndarray:
+    """Row-wise N . V, summed left to right as `back_face_test` sums it (same bits)."""
+    return (normals[:, 0] * views[:, 0] + normals[:, 1] * views[:, 1]) + normals[:, 2] * views[:, 2]
+
+
 def cull_faces(camera: Camera, world_positions: object, faces: object, *, trace=None):
     """The back-face test for every face of a mesh.
 
@@ -67,7 +91,9 @@ def cull_faces(camera: Camera, world_positions: object, faces: object, *, trace=
     faces : (F, k) array_like of int, or sequence of (k_i,) array_like of int, k_i >= 3
         Counter-clockwise seen from outside.
     trace : Tracer or None
-        Receives a ``face_culled`` event per face (polygon = face index).
+        Receives a ``face_culled`` event per face (polygon = face index). With a
+        tracer, or while a step is replaced, each face goes through the step
+        ``back_face_test`` (`scanviz.steps`); else all faces at once, to the same bits.
 
     Returns
     -------
@@ -94,8 +120,13 @@ def cull_faces(camera: Camera, world_positions: object, faces: object, *, trace=
         views = centroids - np.array(camera.eye)
     else:
         views = np.broadcast_to(np.subtract(camera.look_at, camera.eye), normals.shape)
-    dots = np.einsum("ij,ij->i", normals, views)
-    culled = (dots >= 0) & normals.any(axis=1)  # a zero normal has no back to hide
+    dots = _dots(normals, views)
+    if trace is None and not steps.replaced():
+        culled = (dots >= 0) & normals.any(axis=1)  # `back_face_test` on every face at once
+    else:
+        test = steps.get("back_face_test")
+        pairs = zip(normals.tolist(), views.tolist(), strict=True)
+        culled = np.array([bool(test(tuple(n), tuple(v))) for n, v in pairs], dtype=bool)
     if trace is not None:
         for face in range(len(normals)):
             if trace.wants("face_culled", polygon=face):

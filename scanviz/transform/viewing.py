@@ -41,6 +41,7 @@ import math
 
 import numpy as np
 
+from .. import steps
 from ..conventions import DEFAULT_SUBPIXEL_BITS, check_raster_size, check_subpixel_bits
 from ..scene import Camera
 from ..trace.events import VerticesTransformed
@@ -50,14 +51,52 @@ from ._checks import as_points, check_camera, check_tracer
 STAGES = ("world", "eye", "clip", "ndc", "display", "image")
 
 
+@steps.step(
+    "viewing_matrix",
+    takes="the camera's eye, look-at point and up vector: three (x, y, z) tuples of floats",
+    returns="eye_from_world, the 4x4 look-at matrix: rows right, up, backward, then -R @ eye",
+)
+def viewing_matrix(eye: tuple, look_at: tuple, up: tuple) -> np.ndarray:
+    """The look-at matrix of a camera at `eye` looking at `look_at`, `up` roughly up.
+
+    The rotation's rows are the eye's right, true up and backward axes in world
+    coordinates (backward, because the camera looks down -z); the last column
+    moves the eye to the origin: ``eye_from_world = R @ T(-eye)``.
+
+    Examples
+    --------
+    >>> viewing_matrix((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0)) + 0.0  # no -0.0
+    array([[ 1.,  0.,  0.,  0.],
+           [ 0.,  1.,  0.,  0.],
+           [ 0.,  0.,  1., -5.],
+           [ 0.,  0.,  0.,  1.]])
+    """
+    eye = np.array(eye)
+    # Unit vectors by scaling first: lengths near 1e-300 or 1e300 neither underflow nor overflow.
+    forward, up = unit_vectors(np.array([np.subtract(look_at, eye), up]))
+    right = unit_vectors(np.cross(forward, up))
+    up = np.cross(right, forward)  # unit: right and forward are orthonormal
+    matrix = np.eye(4)
+    matrix[:3, :3] = right, up, -forward  # the camera looks down -z
+    matrix[:3, 3] = -matrix[:3, :3] @ eye  # move the eye to the origin
+    return matrix
+
+
 def eye_from_world(camera: Camera) -> np.ndarray:
     """The look-at matrix: world to eye space (eye at the origin, looking down -z, y up).
+
+    The matrix comes from the step ``viewing_matrix`` (`scanviz.steps`).
 
     Returns
     -------
     (4, 4) ndarray of float64
         A rigid motion: rotation rows are the eye's right, up and backward
         axes in world coordinates, then the eye moves to the origin.
+
+    Raises
+    ------
+    ValueError
+        If a replaced ``viewing_matrix`` step returns anything but a 4x4 matrix.
 
     Examples
     --------
@@ -72,14 +111,13 @@ def eye_from_world(camera: Camera) -> np.ndarray:
            [ 0.,  1., -5.,  1.]])
     """
     camera = check_camera(camera)
-    eye = np.array(camera.eye)
-    # Unit vectors by scaling first: lengths near 1e-300 or 1e300 neither underflow nor overflow.
-    forward, up = unit_vectors(np.array([np.subtract(camera.look_at, eye), camera.up]))
-    right = unit_vectors(np.cross(forward, up))
-    up = np.cross(right, forward)  # unit: right and forward are orthonormal
-    matrix = np.eye(4)
-    matrix[:3, :3] = right, up, -forward  # the camera looks down -z
-    matrix[:3, 3] = -matrix[:3, :3] @ eye  # move the eye to the origin
+    matrix = np.asarray(
+        steps.get("viewing_matrix")(camera.eye, camera.look_at, camera.up), dtype=np.float64
+    )
+    if matrix.shape != (4, 4):
+        raise ValueError(
+            f"the 'viewing_matrix' step must return a 4x4 matrix; got shape {matrix.shape}"
+        )
     return matrix
 
 

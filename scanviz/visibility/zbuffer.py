@@ -9,8 +9,10 @@ values. Ties keep the earlier polygon. Coverage is exactly `scan_convert`'s
 shading runs afterwards on the final buffers (deferred shading).
 
 Without a tracer the compiled kernel (`scanviz.visibility.kernels`) runs;
-with one, the traced reference below. They give identical depths and ids,
-and identical values (the same formulas, compiled from the same source).
+with one, or while a step of `scanviz.steps` is replaced, the traced
+reference below, which takes its depth test from the step ``depth_test``.
+They give identical depths and ids, and identical values (the same
+formulas, compiled from the same source).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import steps
 from ..conventions import (
     COORD_LIMIT,
     SAMPLE_MODES,
@@ -283,7 +286,8 @@ def zbuffer(
         per sample) instead of affinely in screen space. Depth is affine in
         screen space either way.
     trace : None, True, or Tracer
-        None runs the compiled kernel; a tracer (True for a new `Recorder`)
+        None runs the compiled kernel (the traced reference while a step of
+        `scanviz.steps` is replaced); a tracer (True for a new `Recorder`)
         runs the traced reference, which emits `polygon_setup`, the scan
         events, `edge_values`, `span_values` and `depth_test`.
 
@@ -337,7 +341,7 @@ def zbuffer(
         bits = exact_bits(polygons.xy)
     units = snap_units(polygons.xy, sample, bits)
     channels = vertex_channels(polygons.values, polygons.inv_w, bool(perspective))
-    if tracer is None and units.dtype == np.int64:
+    if tracer is None and units.dtype == np.int64 and not steps.replaced():
         scale = 2 ** (bits + 1)
         depth, ids, values, counts = kernels.zbuffer_polygons(
             units, units / scale, polygons.z, channels, polygons.offsets, scale,
@@ -379,6 +383,7 @@ def zbuffer_reference(
     values = np.zeros((height, width, polygons.value_count))
     stats = ZBufferStats(polygons=polygons.count)
     offsets = polygons.offsets.tolist()
+    nearer = steps.get("depth_test")
     for p, (first, stop) in enumerate(zip(offsets, offsets[1:], strict=False)):
         snapped = SnappedPolygon(units[first:stop], np.array([0, stop - first]), bits, sample)
         z, polygon_channels = polygons.z[first:stop], channels[first:stop]
@@ -396,10 +401,10 @@ def zbuffer_reference(
             traced = trace is not None and trace.wants("depth_test", polygon=p, y=y)
             for span in spans:
                 for x, z_sample, channel_values in span.samples():
-                    stored = depth[y, x]
-                    passed = bool(z_sample < stored)
+                    stored = _stored(depth[y, x])
+                    passed = bool(nearer(z_sample, stored))
                     if traced:
-                        trace.emit(DepthTest(p, x, y, z_sample, _stored(stored), passed))
+                        trace.emit(DepthTest(p, x, y, z_sample, stored, passed))
                     if passed:
                         depth[y, x], ids[y, x] = z_sample, p
                         values[y, x] = _attributes(channel_values, perspective)
@@ -408,6 +413,22 @@ def zbuffer_reference(
                     stats.depth_failed += not passed
         stats.polygons_drawn += stats.fragments > fragments
     return ZBufferResult(depth, ids, values, stats)
+
+
+@steps.step(
+    "depth_test",
+    takes="a fragment's depth z and the depth stored at its pixel (None: nothing drawn yet)",
+    returns="True if the fragment is nearer and is written (z < stored; ties keep the stored one)",
+)
+def depth_test(z: float, stored: float | None) -> bool:
+    """The z-buffer test: smaller z is nearer; an empty pixel takes any fragment.
+
+    Examples
+    --------
+    >>> depth_test(0.25, None), depth_test(0.25, 0.5), depth_test(0.5, 0.5)
+    (True, True, False)
+    """
+    return stored is None or z < stored
 
 
 def _stored(depth: float) -> float | None:

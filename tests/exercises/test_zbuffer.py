@@ -1,0 +1,103 @@
+"""The z-buffer depth-test exercise (10): depth_test plugged into the real render."""
+
+import numpy as np
+import pytest
+
+from scanviz import steps
+from scanviz.exercises import get
+from scanviz.exercises.core import (
+    compile_answer,
+    hidden_cases,
+    judge,
+    reference_outcome,
+    run_case,
+    score,
+    variant_outcomes,
+)
+from scanviz.exercises.zbuffer import case_scene
+from scanviz.pipeline import render
+from scanviz.scene.builtin import builtin_scene
+from scanviz.trace import Recorder
+
+EXERCISE = get("zbuffer_depth")
+
+
+def _grade(source, cases, variants=True):
+    function = compile_answer(source, EXERCISE.answer)
+    return [
+        judge(
+            EXERCISE,
+            case,
+            run_case(EXERCISE, function, case),
+            reference_outcome(EXERCISE, case),
+            variants=variant_outcomes(EXERCISE, case) if variants else None,
+        )
+        for case in cases
+    ]
+
+
+def test_the_exercise_has_its_number_and_step():
+    assert (EXERCISE.number, EXERCISE.step, EXERCISE.rtol) == (10, "depth_test", 0.0)
+
+
+def test_solution_scores_full_marks_on_public_and_hidden_cases():
+    cases = [*EXERCISE.public, *hidden_cases(EXERCISE, "test", 20)]
+    verdicts = _grade(EXERCISE.solution, cases, variants=False)
+    assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
+    assert score(EXERCISE, verdicts) == EXERCISE.points
+
+
+def test_stub_scores_zero_and_says_it_raised():
+    verdicts = _grade(EXERCISE.stub, EXERCISE.public, variants=False)
+    assert score(EXERCISE, verdicts) == 0
+    assert all(v.error.startswith("NotImplementedError (in depth_test") for v in verdicts)
+
+
+@pytest.mark.parametrize("variant", EXERCISE.variants, ids=lambda v: v.name)
+def test_every_variant_fails_a_public_case_and_is_named(variant):
+    verdicts = _grade(variant.source, EXERCISE.public)
+    assert score(EXERCISE, verdicts) < EXERCISE.points
+    assert any(v.variant is not None and v.variant.name == variant.name for v in verdicts)
+    assert all(v.variant is None or v.variant.name == variant.name for v in verdicts)
+
+
+def test_hidden_cases_come_from_the_secret_only():
+    first = hidden_cases(EXERCISE, "secret one", 5)
+    assert first == hidden_cases(EXERCISE, "secret one", 5)
+    assert first != hidden_cases(EXERCISE, "secret two", 5)
+
+
+def test_the_reference_plugged_in_gives_the_default_trace():
+    for case in [*EXERCISE.public, *hidden_cases(EXERCISE, "test", 5)]:
+        inputs = dict(case.inputs)
+        default = Recorder(EXERCISE.kinds)
+        render(case_scene(inputs), inputs["width"], inputs["height"], shading="flat", trace=default)
+        plugged = Recorder(EXERCISE.kinds)
+        EXERCISE.call(EXERCISE.reference, inputs, plugged)
+        assert plugged.trace() == default.trace() and len(default.trace()), case.label
+        assert not steps.replaced()
+
+
+def test_the_case_scene_is_the_builtin_slide_scene():
+    # The first public case is the UMBC slide: its scene renders exactly as the builtin one.
+    inputs = dict(EXERCISE.public[0].inputs)
+    mine = render(case_scene(inputs), inputs["width"], inputs["height"], shading="flat")
+    slide = render(builtin_scene("umbc_zbuffer"), 12, 12, shading="flat")
+    assert np.array_equal(mine.polygon, slide.polygon[:10]) and (mine.polygon >= 0).any()
+    assert np.array_equal(mine.depth, slide.depth[:10])
+
+
+def test_ties_to_later_diagnostic_on_the_two_squares():
+    # Polygon 0 covers samples x, y in 1..4 (16 tests, all on empty samples); polygon 1 starts
+    # at (3, 3), already held by polygon 0 at the same depth 8/16: a tie, which the earlier
+    # polygon keeps. <= takes it, and the 3 other shared samples (4, 3), (3, 4), (4, 4).
+    variant = next(v for v in EXERCISE.variants if v.name == "ties_to_later")
+    text = _grade(variant.source, EXERCISE.public[1:2])[0].describe()
+    assert "first difference at event 17 of 48 -- depth_test, polygon 1, pixel (3, 3)" in text
+    assert "passed: yours True, reference False" in text
+    assert (
+        "yours differs at 4 of 48: polygon 1 at pixel (3, 3), polygon 1 at pixel (4, 3), "
+        "polygon 1 at pixel (3, 4), polygon 1 at pixel (4, 4)"
+    ) in text
+    assert "result: [3][3]: yours 1, reference 0" in text
+    assert text.endswith(variant.hint)
