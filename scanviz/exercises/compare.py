@@ -35,13 +35,22 @@ class Difference:
     reference: object
 
     def describe(self) -> str:
-        """One line: ``entries[2].x: yours 17/5 (3.4), reference 37/10 (3.7)``."""
+        """One line: ``entries[2].x: yours 17/5 (3.4), reference 37/10 (3.7)``.
+
+        Coverage masks (fields named ``*mask*`` or ``region``) are shown in hex too.
+        """
         where = f"{self.path}: " if self.path else ""
         if self.yours is MISSING:
             return f"{where}missing in yours; reference has {show(self.reference)}"
         if self.reference is MISSING:
             return f"{where}extra in yours ({show(self.yours)}); the reference has none"
-        return f"{where}yours {show(self.yours)}, reference {show(self.reference)}"
+        return f"{where}yours {self._show(self.yours)}, reference {self._show(self.reference)}"
+
+    def _show(self, value: object) -> str:
+        field = self.path.rsplit(".", 1)[-1].split("[", 1)[0]
+        if ("mask" in field or field == "region") and isinstance(value, int) and value >= 0:
+            return f"{value} ({value:#x})"
+        return show(value)
 
 
 def show(value: object, limit: int = 160) -> str:
