@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import steps
 from .conventions import (
     COORD_LIMIT,
     SAMPLE_MODES,
@@ -669,6 +670,14 @@ def _polygon_fragments(polygons, width, height, mask, subpixel_bits, perspective
     return parts, owners
 
 
+def _zbuffer_path(tracer) -> str:
+    if tracer is not None:
+        return "traced reference"
+    if steps.replaced():
+        return "reference: a step of scanviz.steps is replaced"
+    return "opaque visibility, compiled kernel"
+
+
 def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
     transparent = any(
         not o.material.opaque or any(not m.opaque for m in o.mesh.materials) for o in scene.objects
@@ -700,9 +709,7 @@ def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
         Stage(
             "z-buffer",
             visibility == "zbuffer",
-            ("opaque visibility, compiled kernel" if tracer is None else "traced reference")
-            if visibility == "zbuffer"
-            else f"visibility={visibility!r}",
+            _zbuffer_path(tracer) if visibility == "zbuffer" else f"visibility={visibility!r}",
         ),
         Stage(
             "a-buffer",
