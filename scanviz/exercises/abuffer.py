@@ -16,7 +16,7 @@ from .. import steps
 from ..abuffer import Fragments, resolve
 from ..abuffer.pixelstruct import insert_fragment, pack_pixel
 from .catalog import register
-from .core import Case, Exercise, Variant
+from .core import Case, Exercise, Variant, edited_variant
 
 LAYOUT = "4x4"
 FULL = 0xFFFF
@@ -175,8 +175,7 @@ def _generator(features: tuple[str, ...]):
 
 
 def _variant(solution: str, name: str, hint: str, old: str, new: str) -> Variant:
-    assert solution.count(old) == 1, old
-    return Variant(name, hint, solution.replace(old, new))
+    return edited_variant(solution, name, hint, (old, new))
 
 
 # --- exercise 14: a-buffer insertion ------------------------------------------------------

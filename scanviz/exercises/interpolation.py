@@ -9,7 +9,7 @@ from .. import steps
 from ..raster.interpolate import span_step
 from ..visibility.zbuffer import ScreenPolygons, zbuffer
 from .catalog import register
-from .core import Case, Exercise, Variant
+from .core import Case, Exercise, Variant, edited_variant
 
 SIZE = 16  # the raster of the hidden cases
 
@@ -109,11 +109,7 @@ def span_step(z, carry, values, dzdx, dvdx):
 
 
 def _variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    source = SOLUTION
-    for old, new in edits:
-        assert old in source, old
-        source = source.replace(old, new)
-    return Variant(name, hint, source)
+    return edited_variant(SOLUTION, name, hint, *edits)
 
 
 RED, GREEN, BLUE = [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]

@@ -10,7 +10,7 @@ from .. import steps
 from ..raster.lines import midpoint_line, midpoint_step, octant
 from ..trace import Recorder
 from .catalog import register
-from .core import Case, Exercise, Variant
+from .core import Case, Exercise, edited_variant
 
 SIZE = 16  # lines of the hidden cases fit a SIZE x SIZE raster
 
@@ -84,14 +84,6 @@ def _category(x0: int, y0: int, x1: int, y1: int) -> str:
     return f"octant {octant(x1 - x0, y1 - y0)}{', ties' if ties else ''}"
 
 
-def _variant(solution: str, name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    source = solution
-    for old, new in edits:
-        assert old in source, old
-        source = source.replace(old, new)
-    return Variant(name, hint, source)
-
-
 def _line(label: str, x0: int, y0: int, x1: int, y1: int, width: int, height: int) -> Case:
     return Case(label, {"x0": x0, "y0": y0, "x1": x1, "y1": y1, "width": width, "height": height})
 
@@ -152,14 +144,14 @@ register(
         public=DECISION_CASES,
         generate=_line_case,
         variants=(
-            _variant(
+            edited_variant(
                 DECISION_SOLUTION,
                 "tie_diagonal",
                 "a tie (d == 0) takes the diagonal step: the line through the midpoint keeps "
                 "the smaller y, so test d < 0, not d <= 0",
                 ("if d < 0:", "if d <= 0:"),
             ),
-            _variant(
+            edited_variant(
                 DECISION_SOLUTION,
                 "not_doubled",
                 "the increments of f, not of d = 2 f: d grows by 2 (dx - dy) after a diagonal "
@@ -167,7 +159,7 @@ register(
                 ("d + 2 * (dx - dy)", "d + (dx - dy)"),
                 ("d - 2 * dy", "d - dy"),
             ),
-            _variant(
+            edited_variant(
                 DECISION_SOLUTION,
                 "swapped_increments",
                 "the increments are swapped: a diagonal step adds 2 (dx - dy), an axial one -2 dy",
@@ -176,7 +168,7 @@ register(
                     "return True, d - 2 * dy\n    return False, d + 2 * (dx - dy)",
                 ),
             ),
-            _variant(
+            edited_variant(
                 DECISION_SOLUTION,
                 "sign_flipped",
                 "the test is reversed: d < 0 means the midpoint is below the line, so the line "
@@ -299,21 +291,21 @@ register(
         public=LOOP_CASES,
         generate=_line_case,
         variants=(
-            _variant(
+            edited_variant(
                 LOOP_SOLUTION,
                 "tie_always_diagonal",
                 "every tie takes the diagonal step: a tie keeps the smaller minor coordinate, "
                 "diagonal only where the minor step is -1 (d < 0 or d == 0 and tie_steps)",
                 ("diagonal = d < 0 or (d == 0 and tie_steps)", "diagonal = d <= 0"),
             ),
-            _variant(
+            edited_variant(
                 LOOP_SOLUTION,
                 "tie_ignores_direction",
                 "every tie takes the axial step: where the minor axis points down a tie must "
                 "go diagonal, or the pixels depend on which endpoint comes first",
                 ("diagonal = d < 0 or (d == 0 and tie_steps)", "diagonal = d < 0"),
             ),
-            _variant(
+            edited_variant(
                 LOOP_SOLUTION,
                 "not_doubled",
                 "d is f at the midpoint, not 2 f: doubling it, d starts at dx - 2 dy and changes "
@@ -324,7 +316,7 @@ register(
                     "d_axial, d_diagonal = -minor, major - minor",
                 ),
             ),
-            _variant(
+            edited_variant(
                 LOOP_SOLUTION,
                 "swapped_increments",
                 "the increments are swapped: d changes by 2 (dx - dy) after a diagonal step "
@@ -334,7 +326,7 @@ register(
                     "d_diagonal, d_axial = -2 * minor, 2 * (major - minor)",
                 ),
             ),
-            _variant(
+            edited_variant(
                 LOOP_SOLUTION,
                 "forgot_last_pixel",
                 "the last pixel is missing: a line has max(|dx|, |dy|) + 1 pixels, both "

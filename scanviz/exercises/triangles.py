@@ -9,7 +9,7 @@ import numpy as np
 from .. import steps
 from ..raster.edgefn import edge_function, owns_boundary, triangle_samples
 from .catalog import register
-from .core import Case, Exercise, Variant
+from .core import Case, Exercise, edited_variant
 
 SIZE = 12  # the raster of the hidden cases
 BITS = 2  # sub-pixel bits: a grid of 8 units per pixel keeps quarter-pixel inputs exact
@@ -117,14 +117,6 @@ def _triangles_case(rng: random.Random) -> Case:
     return Case(category, inputs, category)
 
 
-def _variant(solution: str, name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    source = solution
-    for old, new in edits:
-        assert old in source, old
-        source = source.replace(old, new)
-    return Variant(name, hint, source)
-
-
 CONVENTIONS = (
     "scanviz: y up; pixel (x, y) is sampled at its lower-left corner (x, y) (or its center "
     "with `sample='center'`); vertices are snapped to a sub-pixel grid of integers "
@@ -207,42 +199,42 @@ register(
         public=OWNERSHIP_CASES,
         generate=_triangles_case,
         variants=(
-            _variant(
+            edited_variant(
                 OWNERSHIP_SOLUTION,
                 "flipped",
                 "the right and top edges are owned instead: a pixel owns its left and lower "
                 "borders, i.e. the edges whose (a, b) leans to the inner side",
                 ("orientation * leading > 0", "orientation * leading < 0"),
             ),
-            _variant(
+            edited_variant(
                 OWNERSHIP_SOLUTION,
                 "closed",
                 "every boundary sample is inside: then two triangles sharing an edge both draw "
                 "its samples; only the left and lower edges own theirs",
                 ("return orientation * leading > 0", "return True"),
             ),
-            _variant(
+            edited_variant(
                 OWNERSHIP_SOLUTION,
                 "open",
                 "no boundary sample is inside: then a sample on an edge shared by two triangles "
                 "is drawn by neither (a crack); the left and lower edges own theirs",
                 ("return orientation * leading > 0", "return False"),
             ),
-            _variant(
+            edited_variant(
                 OWNERSHIP_SOLUTION,
                 "ignores_orientation",
                 "the orientation is ignored: for a clockwise triangle the inner side is where "
                 "E < 0, so multiply by the orientation",
                 ("orientation * leading > 0", "leading > 0"),
             ),
-            _variant(
+            edited_variant(
                 OWNERSHIP_SOLUTION,
                 "horizontal_never",
                 "horizontal edges (a == 0) are never owned: the sample moves by eps**2 in y "
                 "too, so a lower horizontal edge owns its samples (the sign of b decides)",
                 ("leading = a if a != 0 else b", "leading = a"),
             ),
-            _variant(
+            edited_variant(
                 OWNERSHIP_SOLUTION,
                 "y_first",
                 "b decides before a: the sample moves by eps in x and only eps**2 in y, so a "
@@ -314,7 +306,7 @@ register(
         public=EDGE_CASES,
         generate=_triangles_case,
         variants=(
-            _variant(
+            edited_variant(
                 EDGE_SOLUTION,
                 "sign_swapped",
                 "E is negated (positive right of the edge): a = y0 - y1 and b = x1 - x0 make "
@@ -323,13 +315,13 @@ register(
                 ("b = x1 - x0", "b = x0 - x1"),
                 ("c = x0 * y1 - x1 * y0", "c = x1 * y0 - x0 * y1"),
             ),
-            _variant(
+            edited_variant(
                 EDGE_SOLUTION,
                 "c_wrong",
                 "c has the wrong sign: E(start) must be 0, so c = -(a x0 + b y0) = x0 y1 - x1 y0",
                 ("c = x0 * y1 - x1 * y0", "c = x1 * y0 - x0 * y1"),
             ),
-            _variant(
+            edited_variant(
                 EDGE_SOLUTION,
                 "a_b_swapped",
                 "a and b are swapped: a multiplies px and is y0 - y1, b multiplies py and is "

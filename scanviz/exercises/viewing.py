@@ -24,7 +24,7 @@ from ..transform.clip import CLIP_PLANES, clip_against_plane
 from ..transform.cull import back_face_test
 from ..transform.viewing import viewing_matrix
 from .catalog import register
-from .core import Case, Exercise, Variant
+from .core import Case, Exercise, Variant, edited_variant
 
 RTOL = 1e-9  # float steps: see the module docstring
 
@@ -34,8 +34,7 @@ CUBE_SIDES = ("-x", "+x", "-y", "+y", "-z", "+z")
 
 
 def _variant(solution: str, name: str, hint: str, old: str, new: str) -> Variant:
-    assert old in solution, old
-    return Variant(name, hint, solution.replace(old, new))
+    return edited_variant(solution, name, hint, (old, new))
 
 
 def case_camera(spec: dict) -> Camera:

@@ -18,7 +18,7 @@ from ..scene import Camera, Material, Mesh, Scene, SceneObject
 from ..visibility.zbuffer import depth_test
 from .cases import grid_value, polygon
 from .catalog import register
-from .core import Case, Exercise, Variant
+from .core import Case, Exercise, Variant, edited_variant
 
 DEPTH_RANGE = 16.0  # the camera's far plane: depths z in [0, 16) are z / 16 in the buffer
 COLORS = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0))
@@ -113,8 +113,7 @@ def depth_test(z, stored):
 
 
 def _depth_variant(name: str, hint: str, old: str, new: str) -> Variant:
-    assert old in DEPTH_TEST_SOLUTION, old
-    return Variant(name, hint, DEPTH_TEST_SOLUTION.replace(old, new))
+    return edited_variant(DEPTH_TEST_SOLUTION, name, hint, (old, new))
 
 
 register(
