@@ -1,14 +1,19 @@
-"""Exercises on polygon scan conversion (scanviz.raster.scanline): ET, AET, spans."""
+"""Exercises on polygon scan conversion (scanviz.raster.scanline): ET, AET, spans, the loop."""
 
 from __future__ import annotations
 
 import random
+from fractions import Fraction
 
+import numpy as np
+
+from .. import steps
 from ..raster import scan_convert
-from ..raster.scanline import span_rule
+from ..raster.scanline import EdgeEntry, aet_update, edge_table_entry, span_rule
+from ..trace import Recorder
 from .cases import polygon
 from .catalog import register
-from .core import Case, Exercise, Variant
+from .core import Case, Exercise, Variant, edited_variant
 
 
 def _scan_with_span_rule(fn, inputs, tracer):
@@ -36,7 +41,7 @@ def _span_case(rng: random.Random) -> Case:
     )
 
 
-SPAN_RULE_SOLUTION = '''\
+SPAN_RULE_SOLUTION = """\
 import math
 
 def span_rule(crossings, rule):
@@ -49,7 +54,7 @@ def span_rule(crossings, rule):
         if inside and start < end:
             spans.append((start, end, winding))
     return spans
-'''
+"""
 
 
 def _span_variant(name: str, hint: str, old: str, new: str) -> Variant:
@@ -93,20 +98,28 @@ register(
                 "pentagram, nonzero",
                 {
                     "polygon": [[4, 0], [6.5, 7.5], [0, 2.75], [8, 2.75], [1.5, 7.5]],
-                    "width": 9, "height": 8, "rule": "nonzero",
+                    "width": 9,
+                    "height": 8,
+                    "rule": "nonzero",
                 },
             ),
             Case(
                 "pentagram, evenodd",
                 {
                     "polygon": [[4, 0], [6.5, 7.5], [0, 2.75], [8, 2.75], [1.5, 7.5]],
-                    "width": 9, "height": 8, "rule": "evenodd",
+                    "width": 9,
+                    "height": 8,
+                    "rule": "evenodd",
                 },
             ),
             Case(
                 "clockwise square on pixel centers",
-                {"polygon": [[1.5, 1.5], [1.5, 5.5], [5.5, 5.5], [5.5, 1.5]],
-                 "width": 7, "height": 7, "rule": "nonzero"},
+                {
+                    "polygon": [[1.5, 1.5], [1.5, 5.5], [5.5, 5.5], [5.5, 1.5]],
+                    "width": 7,
+                    "height": 7,
+                    "rule": "nonzero",
+                },
             ),
         ),
         generate=_span_case,
@@ -133,8 +146,8 @@ register(
                 "positive_winding_only",
                 "inside only when the count is positive: clockwise polygons have negative "
                 "winding numbers; the nonzero rule tests winding != 0",
-                'else winding != 0',
-                'else winding > 0',
+                "else winding != 0",
+                "else winding > 0",
             ),
             _span_variant(
                 "parity_always",
@@ -160,5 +173,472 @@ register(
             "scan_conversion_stepper(CASE['polygon'], CASE['width'], CASE['height'], rule=CASE['rule'])"
         ),
         banned=("scanviz.raster.scanline", "span_rule"),
+    )
+)
+
+
+# --- shared by the ET, AET and loop exercises ----------------------------------------------
+
+IDEA_CONVENTIONS = (
+    "scanviz: y up, pixel (x, y) is the unit square sampled at its lower-left corner (x, y), "
+    "so sample rows are the integer y; an edge crosses row y when ymin <= y < ymax (half-open)."
+)
+
+
+def _scan(inputs, tracer, **replaced):
+    with steps.using(**replaced):
+        return scan_convert(
+            inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=tracer
+        )
+
+
+def _case(label: str, vertices: list, width: int, height: int, rule: str = "nonzero") -> Case:
+    return Case(label, {"polygon": vertices, "width": width, "height": height, "rule": rule})
+
+
+UMBC = _case("the slide polygon (UMBC)", [[4, 1], [1, 11], [9, 5], [12, 8], [12, 1]], 14, 13)
+OFF_GRID = _case(
+    "triangle off the sample rows", [[1, 0.5], [7, 2.25], [3.5, 6.75]], 8, 8, "evenodd"
+)
+PENTAGRAM = _case(
+    "pentagram, nonzero", [[4, 0], [6.5, 7.5], [0, 2.75], [8, 2.75], [1.5, 7.5]], 9, 8
+)
+BELOW = _case(
+    "clockwise, crossing the bottom of the raster",
+    [[0.5, -1.5], [2, 5.75], [6.5, 3], [5, -0.25]],
+    8,
+    7,
+)
+
+STEPPER = (
+    "from scanviz.widgets import scan_conversion_stepper\n"
+    "scan_conversion_stepper(CASE['polygon'], CASE['width'], CASE['height'], rule=CASE['rule'])"
+)
+
+# --- 3: the edge-table entry ---------------------------------------------------------------
+
+
+def _scan_with_entry(fn, inputs, tracer):
+    return _scan(inputs, tracer, edge_table_entry=fn)
+
+
+def _edge_of_call(index: int, trace: list) -> str:
+    tables = [e for e in trace if e.kind == "edge_table_built"]
+    if not tables or index >= len(tables[0].edges):
+        return f"call {index + 1}"
+    e = tables[0].edges[index]
+    return f"edge {index} ({e.x0:g}, {e.y0:g})-({e.x1:g}, {e.y1:g})"
+
+
+def _entry_output(args, kwargs, returned):
+    """A returned entry as an `EdgeEntry`, whether the answer built a plain tuple or not."""
+    if isinstance(returned, tuple | list) and len(returned) == len(EdgeEntry._fields):
+        return EdgeEntry(*returned)
+    return returned
+
+
+ENTRY_SOLUTION = """\
+import math
+
+def edge_table_entry(start, end):
+    if start[1] == end[1]:
+        return None  # horizontal: it crosses no sample row
+    lower, upper = (start, end) if start[1] < end[1] else (end, start)
+    winding = 1 if end[1] < start[1] else -1
+    return lower, upper, winding, math.ceil(lower[1]), math.ceil(upper[1])
+"""
+
+register(
+    Exercise(
+        id="edge_table_entry",
+        number=3,
+        title="Edge-table entries",
+        stage="scan conversion",
+        kind="step",
+        points=3,
+        answer="edge_table_entry",
+        idea=(
+            "The **edge table** (ET) holds each polygon edge in the bucket of the first sample "
+            "row it crosses. An edge from `start` to `end` is stored by its **lower** and "
+            "**upper** ends; it crosses the rows `ymin <= y < ymax`, i.e. it goes into bucket "
+            "`ceil(ymin)` and leaves the active edge table on row `ceil(ymax)`. A **horizontal** "
+            "edge crosses no sample row: it is not in the table (return `None`), though the "
+            "polygon keeps it for its topology. Each edge also carries its **winding**: +1 if "
+            "it runs downward from `start` to `end`, -1 if upward (a counter-clockwise polygon "
+            "then has winding +1 inside).\n\n" + IDEA_CONVENTIONS
+        ),
+        stub=(
+            "def edge_table_entry(start, end):\n"
+            '    """start, end: the edge\'s endpoints in contour order, (x, y) pairs of Fractions\n'
+            "    in pixels. Return None for a horizontal edge, else the tuple\n"
+            "    (lower, upper, winding, bucket, row_end): lower and upper the endpoints with the\n"
+            "    smaller and the larger y; winding +1 if the edge runs downward (end below\n"
+            '    start), else -1; the edge is active for the rows bucket <= y < row_end (ints)."""\n'
+            "    raise NotImplementedError\n"
+        ),
+        solution=ENTRY_SOLUTION,
+        call=_scan_with_entry,
+        reference=edge_table_entry,
+        public=(UMBC, OFF_GRID, PENTAGRAM, BELOW),
+        generate=_span_case,
+        variants=(
+            edited_variant(
+                ENTRY_SOLUTION,
+                "floor_bucket",
+                "floor instead of ceil for the bucket: an edge starts on the first sample row "
+                "at or above ymin, ceil(ymin)",
+                (
+                    "math.ceil(lower[1]), math.ceil(upper[1])",
+                    "math.floor(lower[1]), math.ceil(upper[1])",
+                ),
+            ),
+            edited_variant(
+                ENTRY_SOLUTION,
+                "horizontal_in_table",
+                "a horizontal edge in the table: it crosses no sample row and has no winding; "
+                "return None for it",
+                (
+                    "    if start[1] == end[1]:\n        return None  # horizontal: it crosses no sample row\n",
+                    "",
+                ),
+            ),
+            edited_variant(
+                ENTRY_SOLUTION,
+                "winding_flipped",
+                "the winding's sign is flipped: an edge running downward (end below start) has "
+                "winding +1",
+                (
+                    "winding = 1 if end[1] < start[1] else -1",
+                    "winding = -1 if end[1] < start[1] else 1",
+                ),
+            ),
+            edited_variant(
+                ENTRY_SOLUTION,
+                "inclusive_top",
+                "the top row is included: an edge crosses the rows y < ymax, so row_end = "
+                "ceil(ymax), not floor(ymax) + 1",
+                ("math.ceil(upper[1])", "math.floor(upper[1]) + 1"),
+            ),
+            edited_variant(
+                ENTRY_SOLUTION,
+                "unsorted_ends",
+                "the ends are not ordered by y: lower is the end with the smaller y, whichever "
+                "comes first in the contour",
+                (
+                    "lower, upper = (start, end) if start[1] < end[1] else (end, start)",
+                    "lower, upper = start, end",
+                ),
+            ),
+        ),
+        kinds=("edge_table_built", "edges_activated", "edges_retired", "aet_sorted", "span"),
+        step="edge_table_entry",
+        place=_edge_of_call,
+        output=_entry_output,
+        raster=lambda result: result.mask,
+        stepper=STEPPER,
+        banned=("scanviz.raster.scanline", "edge_table_entry"),
+    )
+)
+
+# --- 4: the per-row AET update --------------------------------------------------------------
+
+
+def _scan_with_aet_update(fn, inputs, tracer):
+    return _scan(inputs, tracer, aet_update=fn)
+
+
+def _scanned_row_of_call(index: int, trace: list) -> str:
+    rows = sorted({e.y for e in trace if e.kind in ("aet_sorted", "edges_retired")})
+    return f"row {rows[index]}" if index < len(rows) else f"call {index + 1}"
+
+
+AET_SOLUTION = """\
+def aet_update(active, y, entering):
+    retired = [e for e in active if e.row_end <= y]
+    aet = [e for e in active if e.row_end > y]
+    for e in aet:
+        e.x += e.dxdy
+    aet += [e for e in entering if e.bucket <= y]
+    for i in range(1, len(aet)):
+        j = i
+        while j > 0 and aet[j].x < aet[j - 1].x:
+            aet[j - 1], aet[j] = aet[j], aet[j - 1]
+            j -= 1
+    return retired, aet
+"""
+
+register(
+    Exercise(
+        id="aet_update",
+        number=4,
+        title="The active edge table, row by row",
+        stage="scan conversion",
+        kind="step",
+        points=4,
+        answer="aet_update",
+        idea=(
+            "The **active edge table** (AET) holds the edges that cross the current sample row, "
+            "sorted by where they cross it. Going from row y - 1 to row y: **retire** the edges "
+            "whose last row has passed (`row_end <= y`), **step** the x of the others by their "
+            "`dx/dy` (exactly, with Fractions: no drift), **add** the edges of row y's bucket "
+            "(their x is already where they cross row y), and **re-sort** by x. The table is "
+            "almost sorted, so an insertion sort does little work; edges with equal x keep "
+            "their order (the active ones first, then the entering ones as given).\n\n"
+            + IDEA_CONVENTIONS
+        ),
+        stub=(
+            "def aet_update(active, y, entering):\n"
+            '    """active: the AET after row y - 1, sorted by x; entering: the edges of row y\'s\n'
+            "    bucket, with x where they cross row y (an edge you leave out comes again on the\n"
+            "    next row). Each item has .edge (its id), .x and .dxdy (Fractions), .bucket and\n"
+            "    .row_end (it is active for the rows bucket <= y < row_end) and .winding; change\n"
+            "    only .x. Return (retired, aet): the active items with row_end <= y, in their\n"
+            "    order, and row y's AET: the other active items with x stepped by dxdy, then the\n"
+            '    entering ones, insertion-sorted by x (equal x keep that order)."""\n'
+            "    raise NotImplementedError\n"
+        ),
+        solution=AET_SOLUTION,
+        call=_scan_with_aet_update,
+        reference=aet_update,
+        public=(UMBC, PENTAGRAM, OFF_GRID, BELOW),
+        generate=_span_case,
+        variants=(
+            edited_variant(
+                AET_SOLUTION,
+                "activate_late",
+                "the entering edges join one row late: an edge is active from its bucket row "
+                "itself (bucket <= y)",
+                ("e.bucket <= y", "e.bucket < y"),
+            ),
+            edited_variant(
+                AET_SOLUTION,
+                "retire_late",
+                "an edge is retired one row late: it is active for the rows y < row_end, so "
+                "retire it when row_end <= y",
+                ("e.row_end <= y", "e.row_end < y"),
+                ("e.row_end > y", "e.row_end >= y"),
+            ),
+            edited_variant(
+                AET_SOLUTION,
+                "no_resort",
+                "the AET is not re-sorted: entering edges and edges that cross each other must "
+                "be put back in x order every row",
+                (
+                    "    for i in range(1, len(aet)):\n        j = i\n"
+                    "        while j > 0 and aet[j].x < aet[j - 1].x:\n"
+                    "            aet[j - 1], aet[j] = aet[j], aet[j - 1]\n            j -= 1\n",
+                    "",
+                ),
+            ),
+            edited_variant(
+                AET_SOLUTION,
+                "ties_swapped",
+                "edges with equal x are swapped: the insertion sort moves an edge left only "
+                "past a strictly larger x (<, not <=), so ties keep their order",
+                ("aet[j].x < aet[j - 1].x", "aet[j].x <= aet[j - 1].x"),
+            ),
+            edited_variant(
+                AET_SOLUTION,
+                "float_accumulation",
+                "float accumulation: x += float(dx/dy) drifts and loses the exact crossing; "
+                "step x by the exact Fraction dx/dy",
+                ("e.x += e.dxdy", "e.x += float(e.dxdy)"),
+            ),
+            edited_variant(
+                AET_SOLUTION,
+                "step_entering",
+                "the entering edges are stepped too: their x is already where they cross row y; "
+                "step only the edges that were active on the row before",
+                (
+                    "    for e in aet:\n        e.x += e.dxdy\n"
+                    "    aet += [e for e in entering if e.bucket <= y]\n",
+                    "    aet += [e for e in entering if e.bucket <= y]\n"
+                    "    for e in aet:\n        e.x += e.dxdy\n",
+                ),
+            ),
+        ),
+        kinds=("edges_activated", "edges_retired", "aet_sorted", "span"),
+        step="aet_update",
+        place=_scanned_row_of_call,
+        raster=lambda result: result.mask,
+        stepper=STEPPER,
+        banned=("scanviz.raster.scanline", "aet_update"),
+    )
+)
+
+# --- 7: the whole ET/AET loop ---------------------------------------------------------------
+
+
+def _scan_loop(fn, inputs, tracer):
+    vertices = [(Fraction(x), Fraction(y)) for x, y in inputs["polygon"]]
+    fn(vertices, inputs["width"], inputs["height"], inputs["rule"], tracer)
+    return _span_mask(tracer, inputs["width"], inputs["height"])
+
+
+def _span_mask(tracer, width: int, height: int) -> np.ndarray:
+    """The (height, width) bool samples the recorded ``span`` events cover."""
+    mask = np.zeros((height, width), dtype=bool)
+    for event in tracer.trace() if isinstance(tracer, Recorder) else ():
+        if event.kind == "span" and 0 <= event.y < height:
+            mask[event.y, max(event.x_start, 0) : max(min(event.x_end, width), 0)] = True
+    return mask
+
+
+def reference_scan_loop(polygon, width, height, rule, tracer):
+    """The reference of `scan_loop`: scanviz's ET/AET scan conversion, emitting to `tracer`."""
+    scan_convert([[float(x), float(y)] for x, y in polygon], width, height, rule=rule, trace=tracer)
+
+
+LOOP_SOLUTION = """\
+import math
+from scanviz.trace.events import AetEntry, AetSorted, EdgesActivated, EdgesRetired, Span
+
+def scan_loop(polygon, width, height, rule, tracer):
+    table = {}  # the edge table: first raster row -> the edges entering there
+    for i, ((x0, y0), (x1, y1)) in enumerate(zip(polygon, polygon[1:] + polygon[:1])):
+        if y0 == y1:
+            continue  # horizontal: it crosses no sample row
+        (xl, yl), (xu, yu) = ((x0, y0), (x1, y1)) if y0 < y1 else ((x1, y1), (x0, y0))
+        bucket, row_end = max(math.ceil(yl), 0), math.ceil(yu)
+        if bucket < min(row_end, height):
+            dxdy = (xu - xl) / (yu - yl)
+            table.setdefault(bucket, []).append({
+                "edge": i, "x": xl + dxdy * (bucket - yl), "dxdy": dxdy, "ymax": yu,
+                "row_end": row_end, "winding": 1 if y1 < y0 else -1,
+            })
+    aet = []
+    y = min(table, default=height)
+    while y < height and (aet or y in table):
+        retired = [e for e in aet if e["row_end"] <= y]
+        aet = [e for e in aet if e["row_end"] > y]
+        for e in aet:
+            e["x"] += e["dxdy"]
+        entering = table.get(y, [])
+        aet += entering
+        swaps = 0
+        for k in range(1, len(aet)):
+            j = k
+            while j > 0 and aet[j]["x"] < aet[j - 1]["x"]:
+                aet[j - 1], aet[j] = aet[j], aet[j - 1]
+                swaps += 1
+                j -= 1
+        if retired:
+            tracer.emit(EdgesRetired(0, y, tuple(e["edge"] for e in retired)))
+        if entering:
+            tracer.emit(EdgesActivated(0, y, tuple(e["edge"] for e in entering)))
+        if aet:
+            entries = tuple(
+                AetEntry(e["edge"], float(e["x"]), e["x"], float(e["dxdy"]), e["dxdy"],
+                         float(e["ymax"]), e["winding"])
+                for e in aet
+            )
+            tracer.emit(AetSorted(0, y, entries, swaps))
+        winding = 0
+        for left, right in zip(aet, aet[1:]):
+            winding += left["winding"]
+            inside = winding % 2 == 1 if rule == "evenodd" else winding != 0
+            start, end = max(math.ceil(left["x"]), 0), min(math.ceil(right["x"]), width)
+            if inside and start < end:
+                tracer.emit(Span(0, y, start, end, winding))
+        y += 1
+"""
+
+register(
+    Exercise(
+        id="scan_loop",
+        number=7,
+        title="The whole ET/AET scan conversion",
+        stage="scan conversion",
+        kind="loop",
+        points=5,
+        answer="scan_loop",
+        idea=(
+            "Put it together: build the **edge table** (every non-horizontal edge in the bucket "
+            "of its first sample row, `ceil(ymin)`), then for each row from the lowest bucket "
+            "up: retire the edges with `ceil(ymax) <= y`, step the others' x by `dx/dy`, add "
+            "the row's bucket, insertion-sort by x, and fill the spans "
+            "`[ceil(x_in), ceil(x_out))` where the winding count says inside. Rows and "
+            "columns outside the raster are never drawn: an edge starting below row 0 enters "
+            "at row 0, and spans are clipped to `[0, width)`. Every step is an event the "
+            "tracer records, compared with scanviz's own loop event by event.\n\n"
+            + IDEA_CONVENTIONS
+        ),
+        stub=(
+            "from scanviz.trace.events import AetEntry, AetSorted, EdgesActivated, "
+            "EdgesRetired, Span\n\n"
+            "def scan_loop(polygon, width, height, rule, tracer):\n"
+            '    """polygon: one contour [(x, y), ...] of Fractions in pixels; edge i runs from\n'
+            '    polygon[i] to polygon[i + 1] (the last one back to polygon[0]); rule: "nonzero"\n'
+            '    or "evenodd". Horizontal edges are not in the edge table. An edge enters on row\n'
+            "    max(ceil(ymin), 0), with x where it crosses that row, if that row is below\n"
+            "    min(ceil(ymax), height); it is retired on row ceil(ymax). Its winding is +1 if it\n"
+            "    runs downward, else -1. Scan rows y from the lowest bucket while y < height and\n"
+            "    edges are active or entering. On each row: retire, step x by dx/dy, append the\n"
+            "    row's bucket in edge order, insertion-sort by x (equal x keep their order), then\n"
+            "    tracer.emit, with polygon 0 and in this order:\n"
+            "      EdgesRetired(0, y, edge ids in AET order), if any were retired;\n"
+            "      EdgesActivated(0, y, edge ids in edge order), if any entered;\n"
+            "      AetSorted(0, y, entries, swaps), if the AET is not empty: entries in AET order,\n"
+            "        AetEntry(edge, x=float(x), x_exact=x, dxdy=float(dxdy), dxdy_exact=dxdy,\n"
+            "        ymax=float(ymax), winding), swaps the exchanges the insertion sort made;\n"
+            "      Span(0, y, x_start, x_end, winding) for each inside run [ceil(x_in),\n"
+            "        ceil(x_out)) clipped to [0, width), if not empty; winding: the count inside.\n"
+            '    Return nothing."""\n'
+            "    raise NotImplementedError\n"
+        ),
+        solution=LOOP_SOLUTION,
+        call=_scan_loop,
+        reference=reference_scan_loop,
+        public=(UMBC, OFF_GRID, PENTAGRAM, BELOW),
+        generate=_span_case,
+        variants=(
+            edited_variant(
+                LOOP_SOLUTION,
+                "closed_spans",
+                "closed spans [x_in, x_out]: a span is half-open, its end is ceil(x_out)",
+                ('min(math.ceil(right["x"]), width)', 'min(math.floor(right["x"]) + 1, width)'),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "no_resort",
+                "the AET is not re-sorted: entering edges and edges that cross each other must "
+                "be put back in x order every row",
+                (
+                    '            while j > 0 and aet[j]["x"] < aet[j - 1]["x"]:',
+                    "            while False:",
+                ),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "retire_late",
+                "an edge is retired one row late: it is active for the rows y < ceil(ymax), so "
+                "retire it when ceil(ymax) <= y",
+                ('e["row_end"] <= y', 'e["row_end"] < y'),
+                ('e["row_end"] > y', 'e["row_end"] >= y'),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "floor_bucket",
+                "floor instead of ceil for the bucket: an edge starts on the first sample row "
+                "at or above ymin, ceil(ymin)",
+                ("max(math.ceil(yl), 0)", "max(math.floor(yl), 0)"),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "step_entering",
+                "the entering edges are stepped too: their x is already where they cross row y; "
+                "step only the edges that were active on the row before",
+                (
+                    '        for e in aet:\n            e["x"] += e["dxdy"]\n'
+                    "        entering = table.get(y, [])\n        aet += entering\n",
+                    "        entering = table.get(y, [])\n        aet += entering\n"
+                    '        for e in aet:\n            e["x"] += e["dxdy"]\n',
+                ),
+            ),
+        ),
+        kinds=("edges_activated", "edges_retired", "aet_sorted", "span"),
+        raster=lambda mask: mask,
+        stepper=STEPPER,
+        banned=("scanviz.raster.scanline", "scan_loop"),
     )
 )
