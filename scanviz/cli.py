@@ -1,4 +1,4 @@
-"""Command line: ``python -m scanviz trace|fill|render|bench|conformance ...``.
+"""Command line: ``python -m scanviz trace|fill|render|bench|conformance|exercises|check|grade``.
 
 Bad input exits with status 2 and exactly one line on stderr, never a
 traceback: a ValueError, TypeError or OSError (a refused resource limit is a
@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .bench import SUITES
 from .geometry import Polygon
 from .limits import check_memory
 
@@ -226,6 +227,137 @@ def _cmd_conformance(args: argparse.Namespace) -> int:
     return conformance_main(fuzz=args.fuzz, seed=args.seed)
 
 
+def _cmd_exercises_list(args: argparse.Namespace) -> None:
+    from .exercises.catalog import exercises
+
+    rows = [("no", "id", "stage", "kind", "points", "title")]
+    rows += [
+        (f"{e.number:02d}", e.id, e.stage, e.kind, str(e.points), e.title) for e in exercises()
+    ]
+    widths = [max(len(row[c]) for row in rows) for c in range(len(rows[0]) - 1)]
+    for row in rows:
+        print("  ".join([*(cell.ljust(w) for cell, w in zip(row, widths, strict=False)), row[-1]]))
+
+
+def _cmd_exercises_release(args: argparse.Namespace) -> None:
+    from .exercises.release import write_notebooks
+
+    paths = write_notebooks(args.out_dir, with_solutions=args.with_solutions)
+    for path in paths:
+        print(path)
+    what = (
+        "solved notebooks (the teacher's copies: do not hand them out)"
+        if args.with_solutions
+        else "student notebooks"
+    )
+    print(f"{args.out_dir}: {len(paths)} {what}")
+
+
+def _cmd_exercises_key_new(args: argparse.Namespace) -> None:
+    from .exercises.key import new_key, write_key
+
+    key = new_key()
+    write_key(key, args.key)
+    total = sum(e.points for e in key.exercises.values())
+    hidden = sum(e.hidden_cases for e in key.exercises.values())
+    print(
+        f"{args.key}: a new course key for {len(key.exercises)} exercises ({total} points, "
+        f"{hidden} hidden cases), reveal = {key.reveal!r}; edit it to change them or the limits"
+    )
+    print("keep it private: the hidden cases are derived from its secret")
+
+
+def _cmd_check(args: argparse.Namespace) -> None:
+    from .exercises.grading import check_notebook
+
+    student = check_notebook(args.notebook)
+    if not student.grades:
+        print(
+            f"{args.notebook}: no answer cells (a code cell whose first line is "
+            "'# scanviz: answer <exercise-id>')"
+        )
+        return
+    for grade in student.grades:
+        passed, total = grade.public_passed
+        head = f"{grade.exercise} -- "
+        if grade.verdicts:
+            head += f"public cases {passed} of {total}"
+        if grade.status not in ("passed", "failed"):
+            head += f" -- {grade.status}" if grade.verdicts else grade.status
+        print(head + (f": {escaped(grade.message)}" if grade.message else ""))
+        for verdict in grade.verdicts:
+            if not verdict.passed:
+                print(verdict.describe())
+    passed = sum(g.public_passed[0] for g in student.grades)
+    total = sum(g.public_passed[1] for g in student.grades)
+    answered = f"{len(student.grades)} exercise{'s' * (len(student.grades) != 1)}"
+    print(
+        f"{args.notebook}: {answered}, public cases {passed} of {total} "
+        "-- hidden cases are graded later"
+    )
+
+
+def _cmd_grade(args: argparse.Namespace) -> None:
+    from .exercises.grading import grade_submissions
+    from .exercises.key import load_key
+    from .exercises.report import folder_names, output_folder, summary_line, write_reports
+
+    out_dir = output_folder(args.out_dir)
+    if out_dir.resolve().is_relative_to(Path(args.submissions).resolve()):
+        raise ValueError("-o/--output must be a folder outside SUBMISSIONS_DIR")
+    key = load_key(args.key)
+    grades = grade_submissions(args.submissions, key, jobs=args.jobs, progress=True)
+    write_reports(grades, key, out_dir)
+    folders = folder_names(s.student for s in grades)
+    rows = sum(len(s.grades) for s in grades)
+    print(f"{out_dir / 'grades.csv'}: {rows} rows (one per student and exercise)")
+    print(
+        f"{out_dir}/STUDENT/feedback.html, feedback.md, results.json (Gradescope): "
+        f"for each of {len(grades)} students"
+    )
+    for student, folder in zip(grades, folders, strict=True):
+        if folder != student.student:
+            print(f"  student {student.student!r}: folder {folder!r} (sanitized)")
+    print(f"{out_dir / 'summary.txt'}, {out_dir / 'summary.html'}: the class summary")
+    print(summary_line(grades))
+
+
+def _add_exercise_commands(commands) -> None:
+    exercises = commands.add_parser(
+        "exercises", help="the exercise catalog: list it, release notebooks, make a course key"
+    )
+    what = exercises.add_subparsers(
+        dest="exercises_command", required=True, metavar="list|release|key"
+    )
+    listing = what.add_parser("list", help="number, id, stage, kind, points and title of each")
+    listing.set_defaults(run=_cmd_exercises_list)
+    release = what.add_parser("release", help="write the student notebooks into OUT_DIR")
+    release.add_argument("out_dir", metavar="OUT_DIR")
+    release.add_argument(
+        "--with-solutions", action="store_true", help="the teacher's solved copies instead"
+    )
+    release.set_defaults(run=_cmd_exercises_release)
+    key = what.add_parser("key", help="course keys: key new KEY.toml").add_subparsers(
+        dest="key_command", required=True, metavar="new"
+    )
+    new = key.add_parser("new", help="write a course key with a fresh random secret")
+    new.add_argument("key", metavar="KEY.toml", help="the file to write (never overwritten)")
+    new.set_defaults(run=_cmd_exercises_key_new)
+    check = commands.add_parser(
+        "check", help="a student's check: the public cases of a notebook's answers"
+    )
+    check.add_argument("notebook", metavar="NOTEBOOK")
+    check.set_defaults(run=_cmd_check)
+    grade = commands.add_parser("grade", help="grade a folder of notebooks (one per student)")
+    grade.add_argument("submissions", metavar="SUBMISSIONS_DIR")
+    grade.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
+    grade.add_argument("-o", "--output", dest="out_dir", required=True, metavar="OUT_DIR")
+    grade.add_argument(
+        "--jobs", type=_at_least_one, default=1, metavar="N", help="submissions graded at once"
+    )
+    grade.set_defaults(run=_cmd_grade)
+
+
 def _add_render_options(render: argparse.ArgumentParser) -> None:
     render.add_argument(
         "scene", help="SCENE.json, MODEL.obj (framed automatically) or builtin:NAME"
@@ -284,7 +416,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_render_options(render)
     render.set_defaults(run=_cmd_render)
     bench = commands.add_parser("bench", help="benchmarks: run time against peers and error")
-    bench.add_argument("suite", choices=["raster", "render", "coverage"])
+    bench.add_argument("suite", choices=SUITES)
     bench.add_argument("--quick", action="store_true", help="smaller scenes, for a smoke test")
     bench.add_argument(
         "--plot", default="coverage.png", metavar="PATH", help="coverage: error-vs-time plot file"
@@ -298,6 +430,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     conformance.add_argument("--seed", type=_integer, default=0, metavar="S", help="fuzz seed")
     conformance.set_defaults(run=_cmd_conformance)
+    _add_exercise_commands(commands)
     return parser
 
 

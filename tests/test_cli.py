@@ -1,5 +1,6 @@
 """The command line: the slide example's table, JSON shape, PNG output, clean errors."""
 
+import csv
 import json
 import subprocess
 import sys
@@ -226,3 +227,269 @@ def test_conformance_command_parses_its_arguments():
 
     args = build_parser().parse_args(["conformance", "--fuzz", "50", "--seed", "7"])
     assert (args.command, args.fuzz, args.seed) == ("conformance", 50, 7)
+
+
+# --- issue 9: the teacher's and the student's commands ---------------------------------------
+
+
+def fake_module(monkeypatch, name, **functions):
+    """Put a module `name` with `functions` in place of the real one for one test."""
+    import types
+
+    module = types.ModuleType(name)
+    module.__dict__.update(functions)
+    monkeypatch.setitem(sys.modules, name, module)
+
+
+def span_rule_grade(student, variant):
+    """A real ExerciseGrade of span_rule's public cases answered by a known-wrong variant."""
+    from scanviz.exercises import core
+    from scanviz.exercises.catalog import get
+    from scanviz.exercises.results import ExerciseGrade
+
+    exercise = get("span_rule")
+    source = next(v.source for v in exercise.variants if v.name == variant)
+    function = core.compile_answer(source, exercise.answer)
+    verdicts = []
+    for case in exercise.public:
+        yours = core.run_case(exercise, function, case)
+        reference = core.reference_outcome(exercise, case)
+        variants = core.variant_outcomes(exercise, case)
+        verdicts.append(core.judge(exercise, case, yours, reference, variants=variants))
+    points = core.score(exercise, verdicts)
+    return ExerciseGrade(student, "span_rule", points, 4, "failed", "", verdicts)
+
+
+def test_issue9_exercises_list_is_a_table_of_the_catalog(capsys):
+    from scanviz.exercises.catalog import exercises
+
+    assert main(["exercises", "list"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].split() == ["no", "id", "stage", "kind", "points", "title"]
+    assert len(lines) == 1 + len(exercises())
+    for line, exercise in zip(lines[1:], exercises(), strict=True):
+        assert line.split()[:2] == [f"{exercise.number:02d}", exercise.id]
+        assert f" {exercise.kind} " in line and line.endswith(exercise.title)
+
+
+@pytest.mark.parametrize("solutions", [False, True])
+def test_issue9_exercises_release_writes_a_notebook_per_exercise(capsys, tmp_path, solutions):
+    import nbformat
+
+    from scanviz.exercises.catalog import exercises
+
+    argv = ["exercises", "release", str(tmp_path / "out")] + ["--with-solutions"] * solutions
+    assert main(argv) == 0
+    written = sorted(p.name for p in (tmp_path / "out").iterdir())
+    assert written == sorted(f"{e.number:02d}_{e.id}.ipynb" for e in exercises())
+    exercise = exercises()[0]
+    notebook = nbformat.read(tmp_path / "out" / f"{exercise.number:02d}_{exercise.id}.ipynb", 4)
+    answers = [c.source for c in notebook.cells if c.source.startswith("# scanviz: answer ")]
+    assert len(answers) == 1
+    assert (exercise.solution.strip() in answers[0]) is solutions
+    assert f"{len(written)} " in capsys.readouterr().out
+
+
+def test_issue9_release_into_a_file_is_one_line(capsys, tmp_path):
+    (tmp_path / "file").write_text("")
+    assert "is not a folder" in one_error_line(
+        capsys, ["exercises", "release", str(tmp_path / "file")]
+    )
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["exercises"], "required: list|release|key"),
+        (["exercises", "key"], "required: new"),
+        (["grade", "subs", "-o", "out"], "required: --key"),
+        (["grade", "subs", "--key", "k.toml", "-o", "out", "--jobs", "0"], "must be >= 1; got 0"),
+        (["check"], "required: NOTEBOOK"),
+    ],
+)
+def test_issue9_usage_errors_are_one_line(capsys, argv, message):
+    assert message in one_error_line(capsys, argv)
+
+
+def test_issue9_check_prints_public_diagnostics_and_says_hidden_cases_come_later(
+    capsys, monkeypatch
+):
+    from scanviz.exercises.results import ExerciseGrade, StudentGrade
+
+    grade = span_rule_grade("me", "positive_winding_only")
+    missing = ExerciseGrade(
+        "me", "aet_update", 0.0, 4, "no answer", "no cell starts with the marker"
+    )
+    student = StudentGrade("me", "me.ipynb", [grade, missing])
+    seen = []
+    fake_module(
+        monkeypatch,
+        "scanviz.exercises.grading",
+        check_notebook=lambda path: seen.append(path) or student,
+    )
+    assert main(["check", "me.ipynb"]) == 0
+    out = capsys.readouterr().out
+    passed = sum(v.passed for v in grade.verdicts)
+    assert 0 < passed < 4, "the variant passes some public cases and fails others"
+    assert seen == ["me.ipynb"]
+    assert f"span_rule -- public cases {passed} of 4" in out
+    assert "aet_update -- no answer: no cell starts with the marker" in out
+    assert out.rstrip().endswith(
+        f"me.ipynb: 2 exercises, public cases {passed} of 4 -- hidden cases are graded later"
+    )
+    for verdict in grade.verdicts:
+        assert (verdict.describe() in out) is not verdict.passed
+    assert "likely cause: inside only when the count is positive" in out
+    assert "all tests passed" not in out.lower()
+
+
+def test_issue9_check_of_a_missing_notebook_is_one_line(capsys, monkeypatch):
+    def refuse(path):
+        raise FileNotFoundError(f"NOTEBOOK {path!r} does not exist")
+
+    fake_module(monkeypatch, "scanviz.exercises.grading", check_notebook=refuse)
+    assert "NOTEBOOK 'nope.ipynb' does not exist" in one_error_line(capsys, ["check", "nope.ipynb"])
+
+
+def test_issue9_grade_writes_the_reports_and_says_where(capsys, monkeypatch, tmp_path):
+    from dataclasses import dataclass
+
+    from scanviz.exercises.results import StudentGrade
+
+    @dataclass
+    class Key:
+        reveal: str = "never"
+
+    calls = []
+
+    def grade_submissions(folder, key, *, jobs=1, exercises=None, progress=True):
+        calls.append((folder, key, jobs, progress))
+        return [
+            StudentGrade("ann", "ann.ipynb", [span_rule_grade("ann", "floor_for_ceil")]),
+            StudentGrade("a/b", "a/b.ipynb", [span_rule_grade("a/b", "floor_for_ceil")]),
+        ]
+
+    key = Key()
+    fake_module(monkeypatch, "scanviz.exercises.key", load_key=lambda path: key)
+    fake_module(monkeypatch, "scanviz.exercises.grading", grade_submissions=grade_submissions)
+    out = tmp_path / "graded"
+    argv = ["grade", str(tmp_path / "subs"), "--key", "k.toml", "-o", str(out), "--jobs", "2"]
+    assert main(argv) == 0
+    printed = capsys.readouterr().out
+    assert calls == [(str(tmp_path / "subs"), key, 2, True)]
+    assert f"{out / 'grades.csv'}: 2 rows" in printed
+    assert "student 'a/b': folder 'a_b' (sanitized)" in printed
+    assert printed.rstrip().splitlines()[-1].startswith("2 students: mean ")
+    assert (out / "a_b" / "results.json").exists() and (out / "ann" / "feedback.html").exists()
+    assert (out / "summary.html").exists()
+    assert "2 of 2: floor_for_ceil" in (out / "summary.txt").read_text()
+
+
+@pytest.mark.parametrize("inside", ["", "graded"])
+def test_issue9_grade_refuses_to_write_into_the_submissions(capsys, monkeypatch, tmp_path, inside):
+    fake_module(monkeypatch, "scanviz.exercises.key", load_key=lambda path: None)
+    fake_module(monkeypatch, "scanviz.exercises.grading", grade_submissions=None)
+    argv = ["grade", str(tmp_path), "--key", "k.toml", "-o", str(tmp_path / inside)]
+    assert "must be a folder outside SUBMISSIONS_DIR" in one_error_line(capsys, argv)
+
+
+def test_issue9_key_new_writes_a_key_once(capsys, tmp_path):
+    from scanviz.exercises.catalog import exercises
+    from scanviz.exercises.key import load_key
+
+    path = tmp_path / "course.toml"
+    assert main(["exercises", "key", "new", str(path)]) == 0
+    out = capsys.readouterr().out
+    key = load_key(path)
+    assert sorted(key.exercises) == sorted(e.id for e in exercises())
+    assert key.secret not in out and "keep it private" in out
+    assert "never overwritten" in one_error_line(capsys, ["exercises", "key", "new", str(path)])
+    assert load_key(path).secret == key.secret
+
+
+def test_issue9_release_then_grade_solved_and_blank_copies(capsys, tmp_path):
+    import shutil
+
+    from scanviz.exercises.catalog import get
+    from scanviz.exercises.key import new_key, write_key
+    from scanviz.exercises.release import notebook_name
+
+    name = notebook_name(get("span_rule"))
+    assert main(["exercises", "release", str(tmp_path / "handout")]) == 0
+    assert main(["exercises", "release", str(tmp_path / "solved"), "--with-solutions"]) == 0
+    submissions = tmp_path / "submissions"
+    submissions.mkdir()
+    shutil.copy(tmp_path / "solved" / name, submissions / "solved.ipynb")
+    shutil.copy(tmp_path / "handout" / name, submissions / "blank.ipynb")
+    write_key(new_key(["span_rule"]), tmp_path / "key.toml")
+    out = tmp_path / "graded"
+    argv = ["grade", str(submissions), "--key", str(tmp_path / "key.toml"), "-o", str(out)]
+    assert main(argv) == 0
+    assert (
+        capsys.readouterr()
+        .out.rstrip()
+        .endswith("2 students: mean 2 of 4 points (50%), 1 with full marks")
+    )
+    with open(out / "grades.csv", newline="") as file:
+        rows = {row["student"]: row for row in csv.DictReader(file)}
+    assert (rows["solved"]["score"], rows["solved"]["max_score"], rows["solved"]["status"]) == (
+        "4", "4", "passed"
+    )  # fmt: skip
+    assert rows["blank"]["score"] == "0" and rows["blank"]["status"] == "error"
+    results = json.loads((out / "solved" / "results.json").read_text())
+    assert results["score"] == 4 and all(t["status"] == "passed" for t in results["tests"])
+    assert "NotImplementedError" in (out / "blank" / "feedback.md").read_text()
+    assert main(["check", str(submissions / "blank.ipynb")]) == 0
+    printed = capsys.readouterr().out
+    assert "span_rule -- public cases 0 of 4 -- error" in printed
+    assert printed.rstrip().endswith("public cases 0 of 4 -- hidden cases are graded later")
+    assert "public case 'triangle': FAILED" in printed and "samples: 0 matched (#)" in printed
+
+
+def test_issue9_check_a_notebook_without_answers(capsys, tmp_path):
+    import nbformat
+
+    path = tmp_path / "empty.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("x = 1")]), path)
+    assert main(["check", str(path)]) == 0
+    assert "no answer cells" in capsys.readouterr().out
+    path.write_text("{not json")
+    assert "not valid JSON" in one_error_line(capsys, ["check", str(path)])
+
+
+def test_issue9_bench_grading_grades_a_synthetic_class_with_each_jobs(capsys, monkeypatch):
+    from pathlib import Path
+
+    from scanviz.exercises.catalog import exercises
+    from scanviz.exercises.notebook import find_answers, read_notebook
+    from scanviz.exercises.results import ExerciseGrade, StudentGrade
+
+    catalog = {e.id: e for e in exercises()}
+    seen_jobs = []
+
+    def grade_submissions(folder, key, *, jobs=1, exercises=None, progress=True):
+        """Grade by the answers' sources: the solution scores its points, anything else 0."""
+        seen_jobs.append(jobs)
+        grades = []
+        for path in sorted(Path(folder).glob("*.ipynb")):
+            answers = find_answers(read_notebook(path)).answers
+            assert sorted(answers) == sorted(catalog)
+            student = StudentGrade(path.stem, str(path))
+            for exercise_id, source in answers.items():
+                e = catalog[exercise_id]
+                solved = source.split("\n", 1)[1].strip() == e.solution.strip()
+                student.grades.append(
+                    ExerciseGrade(path.stem, e.id, e.points * solved, e.points,
+                                  "passed" if solved else "failed")
+                )  # fmt: skip
+            grades.append(student)
+        return grades
+
+    fake_module(monkeypatch, "scanviz.exercises.grading", grade_submissions=grade_submissions)
+    assert main(["bench", "grading", "--quick"]) == 0
+    out = capsys.readouterr().out
+    total = sum(e.points for e in catalog.values())
+    assert seen_jobs == [1, 2]
+    assert "students/min" in out and "s/student" in out
+    assert f"student-00 (every solution): {total} of {total} points" in out
+    assert "same grades with every --jobs: yes" in out

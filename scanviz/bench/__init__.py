@@ -1,7 +1,8 @@
 """Benchmarks that ship with the package: ``python -m scanviz bench SUITE``.
 
 Each suite prints a table of run times (and, where it applies, errors) and
-measures installed peers (OpenCV, ...) on the same scenes in the same run.
+measures installed peers (OpenCV, ...) on the same scenes in the same run;
+``grading`` prints how many students a class is graded at per minute.
 """
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ import statistics
 import time
 from collections.abc import Callable
 
-SUITES = ("raster", "render", "coverage")
+SUITES = ("raster", "render", "coverage", "grading")
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -39,5 +40,9 @@ def run(suite: str, *, quick: bool = False, plot: str | None = "coverage.png") -
         from .coverage import run_coverage
 
         run_coverage(quick=quick, plot=plot)
+    elif suite == "grading":
+        from .grading import run_grading
+
+        run_grading(quick=quick)
     else:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")

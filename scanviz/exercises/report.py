@@ -1,0 +1,553 @@
+"""The reports of a graded class: grades.csv, feedback per student, Gradescope JSON, class summary.
+
+`write_reports(grades, key, out_dir)` writes into ``out_dir``:
+
+- ``grades.csv``: one row per student and exercise, with the columns
+  ``student, exercise, score, max_score, status``;
+- ``<student>/feedback.html`` and ``<student>/feedback.md``: per exercise the
+  score, the status, how many public and hidden cases passed, every case's
+  diagnostics, the raster diff images (HTML only) and the likely cause;
+- ``<student>/results.json``: Gradescope's autograder results (two tests per
+  exercise: its public cases, visible, and its hidden cases, shown after the
+  grades are published);
+- ``summary.txt`` and ``summary.html``: per exercise the pass rate, the mean
+  score, the most common first divergence and the most common known-wrong
+  variant, with a plot in the HTML.
+
+What a student's code produced (messages, diagnostics) and the student ids
+are untrusted text: HTML escapes it, Markdown fences or backslash-escapes
+it. A hidden case's inputs are shown only when the key's ``reveal`` is
+``"always"``. Otherwise a failed hidden case is reported by its category,
+where it first differs, the counts and the likely cause -- no values, no
+raster, and no error message, which a student's code could fill with the
+inputs it was given (`case_report`, `grade_message`).
+
+Student ids come from file names, so a student's folder is a sanitized
+copy of the id (`folder_names`): only letters, digits, ``.``, ``_`` and
+``-`` are kept (others become ``_``), leading dots go, and a clash gets a
+``-2``, ``-3``, ... suffix. ``grades.csv`` keeps the ids as they are.
+"""
+
+from __future__ import annotations
+
+import base64
+import builtins
+import csv
+import html
+import io
+import json
+import re
+from collections import Counter
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .catalog import exercises
+from .core import Verdict
+from .key import CourseKey
+from .results import STATUSES, ExerciseGrade, StudentGrade
+
+CSV_COLUMNS = ("student", "exercise", "score", "max_score", "status")
+FOLDER_LENGTH = 80  # longest folder name made from a student id
+_UNSAFE = re.compile(r"[^A-Za-z0-9._-]")
+
+_STYLE = (
+    "body{font-family:system-ui,sans-serif;max-width:60em;margin:1em auto;padding:0 1em}"
+    "pre{background:#f6f6f6;padding:.5em;overflow-x:auto;white-space:pre-wrap}"
+    "img.raster{image-rendering:pixelated;border:1px solid #ccc}"
+    "table{border-collapse:collapse}td,th{padding:2px 8px;text-align:left;vertical-align:top}"
+    ".passed{color:#2e7d32}.failed{color:#c62828}"
+)
+
+
+def folder_names(students: Iterable[str]) -> list[str]:
+    """A safe folder name for each student id, all different (see the module docstring).
+
+    >>> folder_names(["alice", "../bob", "a/b", "a\\\\b", "", "Alice"])
+    ['alice', '_bob', 'a_b', 'a_b-2', 'student', 'Alice-2']
+    """
+    names: list[str] = []
+    taken: set[str] = set()
+    for student in students:
+        base = _UNSAFE.sub("_", student).lstrip(".")[:FOLDER_LENGTH] or "student"
+        name, suffix = base, 2
+        while name.lower() in taken:  # case-insensitive file systems
+            name, suffix = f"{base}-{suffix}", suffix + 1
+        taken.add(name.lower())
+        names.append(name)
+    return names
+
+
+def points(value: float) -> str:
+    """Points as written in the reports: at most 4 decimals, no trailing zeros.
+
+    >>> points(4.0), points(1.6), points(4 * 2 / 3)
+    ('4', '1.6', '2.6667')
+    """
+    return f"{round(value, 4):g}"
+
+
+# --- one case -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class CaseReport:
+    """One case as a report shows it: its text and, if shown, its raster diff image."""
+
+    verdict: Verdict
+    text: str
+    image: np.ndarray | None  # (H, W, 3) float, row 0 at the top
+
+
+def case_report(verdict: Verdict, reveal: bool) -> CaseReport:
+    """How `verdict` is shown: in full, or redacted for a hidden case if not `reveal`."""
+    if verdict.hidden and not reveal and not verdict.passed:
+        return CaseReport(verdict, _redacted(verdict), None)
+    image = verdict.raster.image() if verdict.raster is not None else None
+    return CaseReport(verdict, verdict.describe(reveal=reveal), image)
+
+
+def _error_kind(error: str) -> str:
+    """The exception's name if it is one of Python's own (a student's class name could be
+    made from the inputs), else "an exception".
+
+    >>> _error_kind("ValueError: [(9/4, 1)] (in span_rule, line 2)"), _error_kind("X_9_4: boom")
+    ('ValueError', 'an exception')
+    """
+    name = re.match(r"\w*", error).group()
+    known = getattr(builtins, name, None)
+    return name if isinstance(known, type) and issubclass(known, BaseException) else "an exception"
+
+
+def _redacted(verdict: Verdict) -> str:
+    """A failed hidden case without its inputs: category, where it differs, counts, cause."""
+    lines = [f"hidden case {verdict.case.category or 'hidden case'!r}: FAILED"]
+    if verdict.error is not None:
+        kind = _error_kind(verdict.error)
+        lines.append(f"  your code raised {kind} (messages are not shown for hidden cases)")
+    if verdict.trace is not None:
+        place = f", {verdict.trace.place}" if verdict.trace.place else ""
+        lines.append(
+            f"  first difference at event {verdict.trace.index + 1} of {verdict.trace.length}"
+            f" -- {verdict.trace.kind}{place}"
+        )
+    if verdict.wrong_calls:
+        lines.append(
+            f"  with the reference state fed in at every call, yours differs at "
+            f"{len(verdict.wrong_calls)} of {verdict.calls_total}"
+        )
+    if verdict.result is not None:
+        lines.append("  the result differs from the reference's")
+    if verdict.raster is not None:
+        r = verdict.raster
+        lines.append(f"  samples: {r.matched} matched, {r.extra} extra, {r.missing} missing")
+    if verdict.variant is not None:
+        lines.append(f"  likely cause: {verdict.variant.hint}")
+    return "\n".join(lines)
+
+
+def grade_message(grade: ExerciseGrade, reveal: bool) -> str:
+    """The grade's message, with the text of any hidden case's error cut unless `reveal`.
+
+    A worker's "your code raised ..." message quotes the first error, which
+    may come from a hidden case and carry its inputs.
+    """
+    message = grade.message
+    if reveal:
+        return message
+    for verdict in grade.verdicts:
+        if verdict.hidden and verdict.error:
+            kind = _error_kind(verdict.error)
+            message = message.replace(
+                verdict.error, f"{kind} (in a hidden case: message not shown)"
+            )
+    return message
+
+
+def png_data_uri(image: np.ndarray) -> str:
+    """A ``data:image/png;base64,...`` URI of an (H, W, 3) diff image."""
+    from ..widgets.exercise import raster_png
+
+    return "data:image/png;base64," + base64.b64encode(raster_png(image)).decode("ascii")
+
+
+# --- one exercise ---------------------------------------------------------------------------
+
+
+def _titles() -> dict[str, str]:
+    return {e.id: f"{e.number:02d} {e.id} -- {e.title}" for e in exercises()}
+
+
+def _counts(grade: ExerciseGrade) -> str:
+    public, hidden = grade.public_passed, grade.hidden_passed
+    return f"public cases {public[0]} of {public[1]}, hidden cases {hidden[0]} of {hidden[1]}"
+
+
+def _status_line(grade: ExerciseGrade) -> str:
+    line = f"{points(grade.score)} of {points(grade.max_score)} points -- {grade.status}"
+    if grade.status != "passed":
+        line += f": {STATUSES[grade.status]}"
+    return line
+
+
+def _fenced(text: str) -> str:
+    """`text` as a Markdown code block no backtick run inside it can close."""
+    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}\n{text}\n{fence}"
+
+
+def _exercise_markdown(grade: ExerciseGrade, title: str, reveal: bool) -> str:
+    parts = [f"## {title}", _status_line(grade)]
+    if grade.message:
+        parts.append(_fenced(grade_message(grade, reveal)))
+    if grade.verdicts:
+        parts.append(_counts(grade))
+        parts.extend(_fenced(case_report(v, reveal).text) for v in grade.verdicts)
+    return "\n\n".join(parts)
+
+
+def _exercise_html(grade: ExerciseGrade, title: str, reveal: bool) -> str:
+    mark = "passed" if grade.status == "passed" else "failed"
+    parts = [
+        f"<section id='{html.escape(grade.exercise)}'><h2>{html.escape(title)}</h2>",
+        f"<p class='{mark}'><b>{html.escape(_status_line(grade))}</b></p>",
+    ]
+    if grade.message:
+        parts.append(f"<pre>{html.escape(grade_message(grade, reveal))}</pre>")
+    if grade.verdicts:
+        parts.append(f"<p>{html.escape(_counts(grade))}</p>")
+    for verdict in grade.verdicts:
+        report = case_report(verdict, reveal)
+        parts.append(f"<pre>{html.escape(report.text)}</pre>")
+        if report.image is not None:
+            parts.append(
+                f"<p><img class='raster' alt='raster diff: grey matched, red extra, blue missing'"
+                f" src='{png_data_uri(report.image)}'></p>"
+            )
+    parts.append("</section>")
+    return "\n".join(parts)
+
+
+def _page(title: str, body: str) -> str:
+    return (
+        "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
+        f"<title>{html.escape(title)}</title><style>{_STYLE}</style></head>\n"
+        f"<body>\n{body}\n</body></html>\n"
+    )
+
+
+def _student_headline(student: StudentGrade) -> str:
+    return (
+        f"{points(student.score)} of {points(student.max_score)} points "
+        f"(notebook {student.notebook})"
+    )
+
+
+def _markdown_text(text: str) -> str:
+    """Untrusted `text` as literal Markdown: punctuation and HTML characters backslash-escaped."""
+    return re.sub(r"([\\`*_{}\[\]()#+\-.!|<>&~])", r"\\\1", text)
+
+
+def _overview_markdown(student: StudentGrade) -> str:
+    return "\n".join(
+        f"- {g.exercise}: {points(g.score)} of {points(g.max_score)} ({g.status})"
+        for g in student.grades
+    )
+
+
+def feedback_markdown(student: StudentGrade, reveal: bool) -> str:
+    """A student's feedback as Markdown (the text of feedback.html, without images)."""
+    titles = _titles()
+    sections = [
+        _exercise_markdown(g, titles.get(g.exercise, g.exercise), reveal) for g in student.grades
+    ]
+    head = (
+        f"# Feedback for {_markdown_text(student.student)}\n\n"
+        f"{_markdown_text(_student_headline(student))}\n\n{_overview_markdown(student)}"
+    )
+    return "\n\n".join([head, *sections]) + "\n"
+
+
+def _overview_html(student: StudentGrade) -> str:
+    rows = "".join(
+        f"<tr><td><a href='#{html.escape(g.exercise)}'>{html.escape(g.exercise)}</a></td>"
+        f"<td>{points(g.score)} of {points(g.max_score)}</td><td>{html.escape(g.status)}</td></tr>"
+        for g in student.grades
+    )
+    return f"<table><tr><th>exercise</th><th>points</th><th>status</th></tr>{rows}</table>"
+
+
+def feedback_html(student: StudentGrade, reveal: bool) -> str:
+    """A student's feedback as one self-contained HTML page (images inline)."""
+    titles = _titles()
+    body = [
+        f"<h1>Feedback for {html.escape(student.student)}</h1>",
+        f"<p>{html.escape(_student_headline(student))}</p>",
+        _overview_html(student),
+        "<p>Raster images: grey matched, red extra (yours only), blue missing (reference only)."
+        "</p>",
+        *(_exercise_html(g, titles.get(g.exercise, g.exercise), reveal) for g in student.grades),
+    ]
+    return _page(f"Feedback for {student.student}", "\n".join(body))
+
+
+# --- Gradescope -----------------------------------------------------------------------------
+
+
+def _test(name: str, score: float, max_score: float, passed: bool, output: str, visible: bool):
+    return {
+        "name": name,
+        "score": score,
+        "max_score": max_score,
+        "status": "passed" if passed else "failed",
+        "output": output,
+        "output_format": "md",
+        "visibility": "visible" if visible else "after_published",
+    }
+
+
+def gradescope_tests(grade: ExerciseGrade, reveal: bool) -> list[dict]:
+    """The Gradescope tests of one exercise grade: its public cases, then its hidden cases.
+
+    The exercise's score is split between the two in proportion to the cases
+    each passed (its maximum in proportion to their numbers), so the tests
+    add up to the exercise's score and maximum. The hidden cases' test is
+    shown after the grades are published, unless the key reveals them. A
+    grade with no cases run (no answer, a syntax error, ...) is one test.
+    """
+    if not grade.verdicts:
+        output = _fenced(f"{STATUSES[grade.status]}\n{grade_message(grade, reveal)}".rstrip())
+        name = f"{grade.exercise}: {grade.status}"
+        return [_test(name, grade.score, grade.max_score, grade.status == "passed", output, True)]
+    ran = grade.status in ("passed", "failed", "error")  # any other status scores 0 regardless
+    public = [v for v in grade.verdicts if not v.hidden]
+    hidden = [v for v in grade.verdicts if v.hidden]
+    passed = sum(v.passed for v in grade.verdicts)
+    public_score = grade.score * sum(v.passed for v in public) / passed if passed else 0.0
+    public_max = grade.max_score * len(public) / len(grade.verdicts)
+    parts = [
+        ("public", public, public_score, public_max, True),
+        ("hidden", hidden, grade.score - public_score, grade.max_score - public_max, reveal),
+    ]
+    tests = []
+    for which, verdicts, score, max_score, visible in parts:
+        if verdicts:
+            won = sum(v.passed for v in verdicts)
+            name = f"{grade.exercise}: {which} cases ({won} of {len(verdicts)})"
+            output = "\n\n".join(_fenced(case_report(v, reveal).text) for v in verdicts)
+            ok = ran and won == len(verdicts)
+            tests.append(_test(name, score, max_score, ok, output, visible))
+    if grade.message:
+        tests[0]["output"] = _fenced(grade_message(grade, reveal)) + "\n\n" + tests[0]["output"]
+    return tests
+
+
+def gradescope_results(student: StudentGrade, reveal: bool, execution_time: float = 0.0) -> dict:
+    """A student's ``results.json`` in Gradescope's autograder format.
+
+    `execution_time` is the seconds grading took, 0 when unknown.
+    """
+    output = f"{_markdown_text(_student_headline(student))}\n\n{_overview_markdown(student)}"
+    return {
+        "score": student.score,
+        "execution_time": execution_time,
+        "output": output,
+        "output_format": "md",
+        "tests": [test for g in student.grades for test in gradescope_tests(g, reveal)],
+    }
+
+
+# --- the class ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ExerciseSummary:
+    """One exercise across the class.
+
+    ``divergence`` and ``variant`` are (what, students): each student counts
+    once, with the most common first divergence (`Verdict.signature`) or
+    known-wrong variant among their failed cases.
+    """
+
+    exercise: str
+    students: int
+    passed: int  # students with every case passed
+    mean_score: float
+    max_score: float
+    statuses: dict[str, int]
+    divergence: tuple[str, int] | None
+    variant: tuple[str, int] | None
+
+    @property
+    def pass_rate(self) -> float:
+        return self.passed / self.students if self.students else 0.0
+
+
+def _most_common(per_student: list[str | None]) -> tuple[str, int] | None:
+    counts = Counter(item for item in per_student if item)
+    return counts.most_common(1)[0] if counts else None
+
+
+def _mode(items: list[str]) -> str | None:
+    return Counter(items).most_common(1)[0][0] if items else None
+
+
+def class_summary(grades: list[StudentGrade]) -> list[ExerciseSummary]:
+    """Every exercise's summary across the class, in the order the exercises first appear."""
+    by_exercise: dict[str, list[ExerciseGrade]] = {}
+    for student in grades:
+        for grade in student.grades:
+            by_exercise.setdefault(grade.exercise, []).append(grade)
+    summaries = []
+    for exercise, items in by_exercise.items():
+        failed = [[v for v in g.verdicts if not v.passed] for g in items]
+        summaries.append(
+            ExerciseSummary(
+                exercise,
+                len(items),
+                sum(g.status == "passed" for g in items),
+                sum(g.score for g in items) / len(items),
+                max(g.max_score for g in items),
+                dict(Counter(g.status for g in items).most_common()),
+                _most_common([_mode([v.signature for v in f]) for f in failed]),
+                _most_common([_mode([v.variant.name for v in f if v.variant]) for f in failed]),
+            )
+        )
+    return summaries
+
+
+def summary_line(grades: list[StudentGrade]) -> str:
+    """One line about the class: students, mean total, full marks."""
+    if not grades:
+        return "no submissions graded"
+    total = sum(s.score for s in grades) / len(grades)
+    best = max(s.max_score for s in grades)
+    full = sum(s.score >= s.max_score > 0 for s in grades)
+    share = f" ({total / best:.0%})" if best else ""
+    return (
+        f"{len(grades)} students: mean {points(total)} of {points(best)} points{share}, "
+        f"{full} with full marks"
+    )
+
+
+def _of(count_of: tuple[str, int] | None, students: int) -> str:
+    return "none" if count_of is None else f"{count_of[1]} of {students}: {count_of[0]}"
+
+
+def summary_text(grades: list[StudentGrade]) -> str:
+    """The class summary as plain text."""
+    lines = [f"Class summary -- {summary_line(grades)}", ""]
+    for s in class_summary(grades):
+        statuses = ", ".join(f"{status} {n}" for status, n in s.statuses.items())
+        lines += [
+            f"{s.exercise}: passed {s.passed} of {s.students} ({s.pass_rate:.0%}), "
+            f"mean score {points(s.mean_score)} of {points(s.max_score)}",
+            f"  statuses: {statuses}",
+            f"  most common first divergence: {_of(s.divergence, s.students)}",
+            f"  most common known-wrong variant: {_of(s.variant, s.students)}",
+        ]
+    return "\n".join(lines) + "\n"
+
+
+def summary_plot(summaries: list[ExerciseSummary]) -> bytes:
+    """PNG bytes of a bar chart: per exercise the pass rate and the mean score (% of points)."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(7, 1.5 + 0.45 * max(len(summaries), 1)), layout="constrained")
+    axes = figure.add_subplot()
+    rows = np.arange(len(summaries))
+    rates = [100 * s.pass_rate for s in summaries]
+    means = [100 * s.mean_score / s.max_score if s.max_score else 0.0 for s in summaries]
+    axes.barh(rows - 0.2, rates, height=0.4, label="students passed (%)", color="#2e7d32")
+    axes.barh(rows + 0.2, means, height=0.4, label="mean score (% of points)", color="#1565c0")
+    axes.set_yticks(rows, [s.exercise for s in summaries])
+    axes.invert_yaxis()
+    axes.set_xlim(0, 100)
+    axes.set_xlabel("percent")
+    figure.legend(loc="outside upper center", ncols=2, fontsize="small")
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=100)
+    return buffer.getvalue()
+
+
+def summary_html(grades: list[StudentGrade]) -> str:
+    """The class summary as one self-contained HTML page, with the plot inline."""
+    summaries = class_summary(grades)
+    plot = base64.b64encode(summary_plot(summaries)).decode("ascii")
+    rows = "\n".join(
+        "<tr>"
+        + "".join(
+            f"<td>{html.escape(cell)}</td>"
+            for cell in (
+                s.exercise,
+                f"{s.passed} of {s.students} ({s.pass_rate:.0%})",
+                f"{points(s.mean_score)} of {points(s.max_score)}",
+                ", ".join(f"{status} {n}" for status, n in s.statuses.items()),
+                _of(s.divergence, s.students),
+                _of(s.variant, s.students),
+            )
+        )
+        + "</tr>"
+        for s in summaries
+    )
+    body = (
+        f"<h1>Class summary</h1><p>{html.escape(summary_line(grades))}</p>\n"
+        f"<p><img alt='pass rate and mean score per exercise' src='data:image/png;base64,{plot}'>"
+        "</p>\n<table><tr><th>exercise</th><th>passed</th><th>mean score</th><th>statuses</th>"
+        "<th>most common first divergence</th><th>most common known-wrong variant</th></tr>\n"
+        f"{rows}\n</table>"
+    )
+    return _page("Class summary", body)
+
+
+# --- writing --------------------------------------------------------------------------------
+
+
+def write_grades_csv(grades: list[StudentGrade], path: Path) -> None:
+    """``grades.csv``: one row per student and exercise (`CSV_COLUMNS`)."""
+    with open(path, "w", newline="", encoding="utf-8") as file:
+        writer = csv.writer(file)
+        writer.writerow(CSV_COLUMNS)
+        for student in grades:
+            for g in student.grades:
+                writer.writerow(
+                    [student.student, g.exercise, points(g.score), points(g.max_score), g.status]
+                )
+
+
+def output_folder(out_dir: str | Path) -> Path:
+    """`out_dir` as a Path; NotADirectoryError if it exists and is not a folder."""
+    out_dir = Path(out_dir)
+    if out_dir.exists() and not out_dir.is_dir():
+        raise NotADirectoryError(f"OUT_DIR {str(out_dir)!r} exists and is not a folder")
+    return out_dir
+
+
+def write_reports(grades: list[StudentGrade], key: CourseKey, out_dir: str | Path) -> None:
+    """Write every report of a graded class into `out_dir` (see the module docstring).
+
+    Parameters
+    ----------
+    grades : list of StudentGrade
+        What `scanviz.exercises.grading.grade_submissions` returned.
+    key : CourseKey
+        The course key; its ``reveal`` says whether hidden inputs are shown.
+    out_dir : str or Path
+        Created if needed; files already there are overwritten.
+    """
+    out_dir = output_folder(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    reveal = key.reveal == "always"
+    write_grades_csv(grades, out_dir / "grades.csv")
+    for student, name in zip(grades, folder_names(s.student for s in grades), strict=True):
+        folder = out_dir / name
+        folder.mkdir(exist_ok=True)
+        (folder / "feedback.html").write_text(feedback_html(student, reveal), encoding="utf-8")
+        (folder / "feedback.md").write_text(feedback_markdown(student, reveal), encoding="utf-8")
+        results = gradescope_results(student, reveal)
+        (folder / "results.json").write_text(json.dumps(results, indent=1), encoding="utf-8")
+    (out_dir / "summary.txt").write_text(summary_text(grades), encoding="utf-8")
+    (out_dir / "summary.html").write_text(summary_html(grades), encoding="utf-8")
