@@ -253,10 +253,25 @@ def _cmd_exercises_release(args: argparse.Namespace) -> None:
     print(f"{args.out_dir}: {len(paths)} {what}")
 
 
+def _exercise_ids(text: str) -> list[str]:
+    """A comma-separated list of exercise ids of the catalog."""
+    from .exercises.catalog import get
+
+    ids = [part.strip() for part in text.split(",") if part.strip()]
+    if not ids:
+        raise argparse.ArgumentTypeError("must name at least one exercise id")
+    for exercise_id in ids:
+        try:
+            get(exercise_id)
+        except ValueError as error:
+            raise argparse.ArgumentTypeError(str(error)) from None
+    return ids
+
+
 def _cmd_exercises_key_new(args: argparse.Namespace) -> None:
     from .exercises.key import new_key, write_key
 
-    key = new_key()
+    key = new_key(args.exercises)
     write_key(key, args.key)
     total = sum(e.points for e in key.exercises.values())
     hidden = sum(e.hidden_cases for e in key.exercises.values())
@@ -306,7 +321,9 @@ def _cmd_grade(args: argparse.Namespace) -> None:
     if out_dir.resolve().is_relative_to(Path(args.submissions).resolve()):
         raise ValueError("-o/--output must be a folder outside SUBMISSIONS_DIR")
     key = load_key(args.key)
-    grades = grade_submissions(args.submissions, key, jobs=args.jobs, progress=True)
+    grades = grade_submissions(
+        args.submissions, key, jobs=args.jobs, exercises=args.exercises, progress=True
+    )
     write_reports(grades, key, out_dir)
     folders = folder_names(s.student for s in grades)
     rows = sum(len(s.grades) for s in grades)
@@ -342,6 +359,12 @@ def _add_exercise_commands(commands) -> None:
     )
     new = key.add_parser("new", help="write a course key with a fresh random secret")
     new.add_argument("key", metavar="KEY.toml", help="the file to write (never overwritten)")
+    new.add_argument(
+        "--exercises",
+        type=_exercise_ids,
+        metavar="ID,ID,...",
+        help="the assignment's exercises (default: all of them)",
+    )
     new.set_defaults(run=_cmd_exercises_key_new)
     check = commands.add_parser(
         "check", help="a student's check: the public cases of a notebook's answers"
@@ -354,6 +377,12 @@ def _add_exercise_commands(commands) -> None:
     grade.add_argument("-o", "--output", dest="out_dir", required=True, metavar="OUT_DIR")
     grade.add_argument(
         "--jobs", type=_at_least_one, default=1, metavar="N", help="submissions graded at once"
+    )
+    grade.add_argument(
+        "--exercises",
+        type=_exercise_ids,
+        metavar="ID,ID,...",
+        help="grade only these exercises of the key (default: all of the key's)",
     )
     grade.set_defaults(run=_cmd_grade)
 

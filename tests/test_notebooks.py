@@ -21,3 +21,21 @@ def test_notebook_runs(path):
     outputs = [o for c in notebook.cells if c.cell_type == "code" for o in c.outputs]
     assert not [o for o in outputs if o.output_type == "error"]
     assert any("image/png" in o.get("data", {}) for o in outputs), f"{path.name} shows no image"
+
+
+EXERCISES = sorted((Path(__file__).parent.parent / "notebooks" / "exercises").glob("*.ipynb"))
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.name)
+def test_exercise_notebook_runs_as_released(path):
+    """The blank notebook runs: the stepper shows the reference, the check cell reports the stub."""
+    notebook = nbformat.read(path, as_version=4)
+    resources = {"metadata": {"path": str(path.parent)}}
+    NotebookClient(notebook, timeout=600, kernel_name="python3", resources=resources).execute()
+    outputs = [o for c in notebook.cells if c.cell_type == "code" for o in c.outputs]
+    assert not [o for o in outputs if o.output_type == "error"]
+    check = notebook.cells[-1].outputs
+    text = "".join(o.get("data", {}).get("text/plain", "") + o.get("text", "") for o in check)
+    html = "".join(o.get("data", {}).get("text/html", "") for o in check)
+    assert "public cases 0 of" in text + html and "hidden cases are graded later" in text + html
+    assert "NotImplementedError" in text + html

@@ -92,8 +92,10 @@ class CheckReport:
         return line + " -- hidden cases are graded later"
 
     def __str__(self) -> str:
+        """The headline, the first failing case in full, the others in a line each."""
         lines = [self.headline()]
-        lines.extend(c.verdict.describe() for c in self.cases if not c.verdict.passed)
+        failing = [c.verdict for c in self.cases if not c.verdict.passed]
+        lines.extend(v.describe() if i == 0 else v.summary() for i, v in enumerate(failing))
         rerun = next((c for c in self.cases if not c.verdict.passed), None)
         if rerun is not None:
             lines.append(

@@ -44,7 +44,10 @@ class Difference:
             return f"{where}missing in yours; reference has {show(self.reference)}"
         if self.reference is MISSING:
             return f"{where}extra in yours ({show(self.yours)}); the reference has none"
-        return f"{where}yours {self._show(self.yours)}, reference {self._show(self.reference)}"
+        mine = self._show(self.yours)
+        if isinstance(self.yours, float) and isinstance(self.reference, Fraction):
+            mine += " (a float: the reference is exact)"
+        return f"{where}yours {mine}, reference {self._show(self.reference)}"
 
     def _show(self, value: object) -> str:
         field = self.path.rsplit(".", 1)[-1].split("[", 1)[0]
@@ -53,11 +56,16 @@ class Difference:
         return show(value)
 
 
-def show(value: object, limit: int = 160) -> str:
-    """A value as a student reads it: exact fractions with their mixed form and decimal."""
+def show(value: object, limit: int = 160, *, nested: bool = False) -> str:
+    """A value as a student reads it: exact fractions with their mixed form and decimal.
+
+    Inside records and lists (`nested`) a fraction is just ``17/5``.
+    """
     if isinstance(value, Fraction):
         if value.denominator == 1:
             return str(value.numerator)
+        if nested:
+            return str(value)
         whole = int(value)
         mixed = f"{whole} {abs(value - whole)} = " if whole else ""
         return f"{value} ({mixed}{float(value):.6g})"
@@ -65,14 +73,16 @@ def show(value: object, limit: int = 160) -> str:
         return repr(value)
     if isinstance(value, Opaque):
         return value.repr
-    if isinstance(value, Record):
-        inner = ", ".join(f"{k}={show(v, limit)}" for k, v in value.fields.items())
-        text = f"{value.type}({inner})"
-    elif isinstance(value, Event):
-        inner = ", ".join(f"{f.name}={show(getattr(value, f.name), limit)}" for f in _fields(value))
+    fields = _items(value)
+    if isinstance(value, Event):
+        inner = ", ".join(f"{k}={show(v, limit, nested=True)}" for k, v in fields.items())
         text = f"{value.kind}({inner})"
+    elif fields is not None:
+        name = value.type if isinstance(value, Record) else type(value).__name__
+        inner = ", ".join(f"{k}={show(v, limit, nested=True)}" for k, v in fields.items())
+        text = f"{name}({inner})"
     elif isinstance(value, list | tuple):
-        text = "[" + ", ".join(show(v, limit) for v in value) + "]"
+        text = "[" + ", ".join(show(v, limit, nested=True) for v in value) + "]"
     elif isinstance(value, np.ndarray):
         text = np.array2string(value, threshold=20, separator=", ")
     else:

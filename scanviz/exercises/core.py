@@ -262,6 +262,12 @@ class Verdict:
             return "step output"
         return "result"
 
+    def summary(self, reveal: bool = True) -> str:
+        """One line: the case, and where it first differs or what it raised."""
+        first = self.describe(reveal).splitlines()
+        detail = next((line.strip() for line in first[1:] if line.strip()), "")
+        return first[0] + (f" -- {detail}" if detail else "")
+
     def describe(self, reveal: bool = True) -> str:
         """The diagnostics as plain text; hidden inputs appear only if `reveal`."""
         name = (

@@ -20,6 +20,7 @@ import difflib
 import json
 import os
 import threading
+import time
 from collections.abc import Iterable, Iterator, Mapping
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -27,9 +28,25 @@ from pathlib import Path
 from ..progress import progress as progress_bar
 from .catalog import exercises as catalog
 from .catalog import get
-from .core import Case, Exercise, Outcome, hidden_cases, judge, reference_outcome, variant_outcomes
+from .core import (
+    Case,
+    Exercise,
+    Outcome,
+    Verdict,
+    hidden_cases,
+    judge,
+    reference_outcome,
+    variant_outcomes,
+)
 from .key import CourseKey, load_key
-from .notebook import ANSWER_MARKER, Answers, NotebookError, find_answers, read_notebook
+from .notebook import (
+    ANSWER_MARKER,
+    Answers,
+    NotebookError,
+    find_answers,
+    merge_answers,
+    read_notebook,
+)
 from .plain import from_plain, to_plain
 from .results import ExerciseGrade, StudentGrade
 from .sandbox import Limits, WorkerResult, run_submission
@@ -41,12 +58,12 @@ def find_submissions(folder: str | os.PathLike) -> list[tuple[str, Path]]:
     """(student id, notebook) for every submission in `folder`, sorted by student id.
 
     A ``.ipynb`` file is one student (the id is the file's stem); a folder is
-    one student (the id is its name) and holds exactly one notebook at any
-    depth, so nbgrader's ``submitted/<student>/<assignment>/x.ipynb`` works.
-    Hidden entries and ``.ipynb_checkpoints`` are skipped. A student folder
-    with no notebook or several is listed with the folder as its path (it is
-    graded "malformed notebook"). If a file and a folder give the same id, the
-    file keeps its full name as id.
+    one student (the id is its name) holding one notebook at any depth, so
+    nbgrader's ``submitted/<student>/<assignment>/x.ipynb`` works, or several
+    (the released notebooks, one per exercise): their answers are merged, and
+    the folder is the path. Hidden entries and ``.ipynb_checkpoints`` are
+    skipped; a folder with no notebook is graded "malformed notebook". If a
+    file and a folder give the same id, the file keeps its full name as id.
     """
     root = Path(folder)
     if not root.is_dir():
@@ -56,7 +73,7 @@ def find_submissions(folder: str | os.PathLike) -> list[tuple[str, Path]]:
     for entry in sorted(entries, key=lambda p: not p.is_dir()):  # folders first
         if entry.is_dir():
             notebooks = _notebooks(entry)
-            found[entry.name] = notebooks[0] if len(notebooks) == 1 else entry
+            found[entry.name] = notebooks[0] if len(notebooks) == 1 else entry  # merged
         elif entry.suffix == ".ipynb":
             found[entry.name if entry.stem in found else entry.stem] = entry
     return sorted(found.items())
@@ -102,6 +119,16 @@ def _as_sent(case: Case) -> Case:
     return Case(case.label, from_plain(to_plain(dict(case.inputs))), case.category)
 
 
+def _error_message(verdicts: list[Verdict]) -> str:
+    """What the answer raised, quoting a public case's error only (hidden inputs stay hidden)."""
+    raised = [v for v in verdicts if v.error]
+    public = next((v for v in raised if not v.hidden), None)
+    if public is not None:
+        return f"your code raised {public.error} (in {len(raised)} of {len(verdicts)} cases)"
+    kind = raised[0].error.split(":")[0].split(" (")[0] if raised else "an exception"
+    return f"your code raised {kind} in {len(raised)} of {len(verdicts)} cases (hidden ones)"
+
+
 class _Grader:
     """Everything one grading run shares: the exercises, the limits, the case cache."""
 
@@ -133,14 +160,15 @@ class _Grader:
         return public + [(_as_sent(c), True) for c in hidden]
 
     def grade(self, student: str, path: Path, folder: Path | None) -> StudentGrade:
-        """One submission's grades; nothing the submission holds or does raises."""
+        """One submission's grades, timed; nothing the submission holds or does raises."""
+        started = time.perf_counter()
+        grade = self._grade(student, path, folder)
+        grade.seconds = time.perf_counter() - started
+        return grade
+
+    def _grade(self, student: str, path: Path, folder: Path | None) -> StudentGrade:
         grade = StudentGrade(student, str(path))
-        try:
-            answers = find_answers(read_notebook(path)) if path.is_file() else None
-        except NotebookError as error:
-            answers, problem = None, str(error)
-        else:
-            problem = _folder_problem(path) if answers is None else ""
+        answers, problem = _read_answers(path)
         if answers is None:
             grade.grades = [
                 self._zero(student, e, "malformed notebook", problem) for e in self.exercises
@@ -189,7 +217,7 @@ class _Grader:
             ]
         except Exception as error:  # a worker that sent odd but well-formed data
             return self._zero(
-                student, exercise, "crashed", f"its outcomes cannot be compared: {error}"
+                student, exercise, "grader error", f"its outcomes cannot be compared: {error}"
             )
         points = float(self.points[exercise.id])
         if result.status in _ZERO_STATUSES:
@@ -201,7 +229,7 @@ class _Grader:
         if passed == len(cases):
             status, message = "passed", ""
         elif result.status == "error":
-            status, message = "error", result.message
+            status, message = "error", _error_message(verdicts)
         else:
             first = next((v for v in verdicts if not v.passed), None)
             status = "failed"
@@ -235,12 +263,24 @@ class _LazyVariants(Mapping):
         return self.cache.variants(self.exercise, self.case)[name]
 
 
-def _folder_problem(folder: Path) -> str:
-    notebooks = _notebooks(folder)
+def _read_answers(path: Path) -> tuple[Answers | None, str]:
+    """(answers, problem) of a submission: one notebook, or a folder whose notebooks are merged.
+
+    A folder's unreadable notebook spoils the whole submission only if it is
+    its only one; otherwise it is skipped and named in the problem.
+    """
+    notebooks = [path] if path.is_file() else _notebooks(path)
     if not notebooks:
-        return f"the folder {folder.name!r} holds no notebook"
-    names = ", ".join(str(p.relative_to(folder)) for p in notebooks)
-    return f"the folder {folder.name!r} holds {len(notebooks)} notebooks ({names}); keep one"
+        return None, f"the folder {path.name!r} holds no notebook"
+    parts, unreadable = [], []
+    for notebook in notebooks:
+        try:
+            parts.append((notebook.name, find_answers(read_notebook(notebook))))
+        except NotebookError as error:
+            unreadable.append(str(error))
+    if not parts:
+        return None, "; ".join(unreadable)
+    return merge_answers(parts), "; ".join(unreadable)
 
 
 def _chosen(key: CourseKey, exercises: Iterable[str] | None) -> list[Exercise]:

@@ -169,3 +169,31 @@ def _near_miss(source: str, index: int, known: list[str], problems: dict[str, st
             f"cell {index} starts with {first!r}, which is not the answer marker: the cell's "
             f"first line must be exactly {(ANSWER_MARKER + exercise_id)!r}"
         )
+
+
+def merge_answers(parts: list[tuple[str, Answers]]) -> Answers:
+    """The answers of several notebooks of one student, (name, answers) each.
+
+    An exercise answered in two notebooks is a duplicate, named with both
+    notebooks; setup cells run in the order of the notebooks.
+    """
+    merged = Answers()
+    where: dict[str, str] = {}
+    for name, answers in parts:
+        merged.setup.extend(answers.setup)
+        merged.duplicated |= answers.duplicated
+        for exercise_id, problem in answers.problems.items():
+            merged.problems.setdefault(exercise_id, f"{name}: {problem}")
+        for exercise_id, source in answers.answers.items():
+            if exercise_id in where:
+                merged.duplicated.add(exercise_id)
+                merged.problems[exercise_id] = (
+                    f"exercise {exercise_id!r} is answered in two notebooks "
+                    f"({where[exercise_id]} and {name}); keep one"
+                )
+                continue
+            where[exercise_id] = name
+            merged.answers[exercise_id] = source
+    for exercise_id in merged.duplicated:  # as in one notebook: a duplicate is not graded
+        merged.answers.pop(exercise_id, None)
+    return merged

@@ -65,6 +65,10 @@ def to_plain(value: object, depth: int = 0) -> object:
         return {"$fraction": [value.numerator, value.denominator]}
     if isinstance(value, Event):
         return {"$event": encode(value)}
+    if isinstance(value, Record):  # read back from plain form already: keep its own form
+        return _record(value.type, value.fields, depth)
+    if isinstance(value, Opaque):
+        return {"$repr": value.repr}
     if isinstance(value, np.ndarray) and value.dtype.kind in ARRAY_KINDS:
         return {"$array": to_plain(value.tolist(), depth + 1), "dtype": str(value.dtype)}
     if isinstance(value, tuple) and hasattr(value, "_fields"):

@@ -15,8 +15,8 @@ import nbformat
 
 from .catalog import exercises
 from .core import Exercise
+from .notebook import ANSWER_MARKER
 
-ANSWER_MARKER = "# scanviz: answer "
 KERNEL = {"display_name": "Python 3", "language": "python", "name": "python3"}
 
 

@@ -547,7 +547,7 @@ def write_reports(grades: list[StudentGrade], key: CourseKey, out_dir: str | Pat
         folder.mkdir(exist_ok=True)
         (folder / "feedback.html").write_text(feedback_html(student, reveal), encoding="utf-8")
         (folder / "feedback.md").write_text(feedback_markdown(student, reveal), encoding="utf-8")
-        results = gradescope_results(student, reveal)
+        results = gradescope_results(student, reveal, student.seconds)
         (folder / "results.json").write_text(json.dumps(results, indent=1), encoding="utf-8")
     (out_dir / "summary.txt").write_text(summary_text(grades), encoding="utf-8")
     (out_dir / "summary.html").write_text(summary_html(grades), encoding="utf-8")

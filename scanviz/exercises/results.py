@@ -23,6 +23,7 @@ STATUSES = {
     "not allowed": "the answer uses the reference implementation, patches scanviz, "
     "exits the process or touches files outside its folder",
     "crashed": "the process running the answer died",
+    "grader error": "the grader could not compare what the answer produced (a bug: please report it)",
     "malformed notebook": "the notebook file is not a readable notebook",
 }
 """Every status an exercise grade can have, with what it means."""
@@ -62,6 +63,7 @@ class StudentGrade:
     student: str
     notebook: str
     grades: list[ExerciseGrade] = field(default_factory=list)
+    seconds: float = 0.0  # wall time grading took
 
     @property
     def score(self) -> float:

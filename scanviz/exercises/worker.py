@@ -37,7 +37,7 @@ import scanviz
 
 from .catalog import get
 from .core import Case, Exercise, Outcome, run_case
-from .plain import Opaque, Record, from_plain, to_plain
+from .plain import Opaque, from_plain
 
 OUTPUT_FILE_LIMIT = 64 * 2**20  # bytes a submission may write to one file (prints included)
 ALWAYS_BANNED = ("scanviz.steps", "scanviz.exercises")  # the step table and the solutions
@@ -376,34 +376,6 @@ def _run(exercise, codes, inputs, seconds, guard, outcomes) -> tuple[str, str]:
     return status, message
 
 
-def _replain(value: object) -> object:
-    """Plain data of a value `run_case` already read back from plain form.
-
-    `plain.to_plain` wraps a `Record` as a record of type "Record" and an
-    `Opaque` as a record too; this keeps them in their own forms. (Remove it
-    once `to_plain` does this itself: then ``Outcome.to_plain`` suffices.)
-    """
-    if isinstance(value, Record):
-        return {"$record": value.type, "fields": {k: _replain(v) for k, v in value.fields.items()}}
-    if isinstance(value, Opaque):
-        return {"$repr": value.repr}
-    if isinstance(value, list):
-        return [_replain(item) for item in value]
-    if isinstance(value, dict):
-        return {"$dict": {k: _replain(v) for k, v in value.items()}}
-    return to_plain(value)
-
-
-def _outcome_plain(outcome: Outcome) -> dict:
-    return {
-        "trace": to_plain(outcome.trace),
-        "calls": _replain(outcome.calls),
-        "result": _replain(outcome.result),
-        "raster": _replain(outcome.raster),
-        "error": outcome.error,
-    }
-
-
 # --- the process ------------------------------------------------------------------------------
 
 
@@ -478,7 +450,7 @@ def main(root: Path) -> None:
                 float(request["limits"]["case_seconds"]),
                 guard,
             )
-        plain = [_outcome_plain(o) for o in outcomes]
+        plain = [o.to_plain() for o in outcomes]
         send({"done": item["id"], "status": status, "message": message, "outcomes": plain})
         if restart:
             send({"restart": True})

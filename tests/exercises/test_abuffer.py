@@ -114,7 +114,7 @@ def test_golden_diagnostic_of_an_insertion_that_never_discards():
     # 13 events: 9 insertions and 4 discards (pixels (0, 0), (1, 0), (2, 0), (0, 1)).
     text = variant_verdict("abuffer_insert", "never_discard", 0).describe()
     green = (
-        f"FragmentRecord(z=0.6, zmax=0.6, area=0.5, mask={0x3333}, color=(0.0, 1.0, 0.0), "
+        f"FragmentRecord(z=0.6, zmax=0.6, area=0.5, mask={0x3333}, color=[0.0, 1.0, 0.0], "
         "opacity=1.0, object=1)"
     )
     assert "first difference at event 2 of 13 -- fragment_inserted, polygon 1, pixel (0, 0)" in text

@@ -184,14 +184,19 @@ def test_find_submissions_knows_the_layouts(tmp_path):
         find_submissions(root / "alice.ipynb")
 
 
-def test_a_student_folder_without_exactly_one_notebook_is_malformed(tmp_path):
+def test_a_student_folder_of_notebooks_is_graded_as_one_submission(tmp_path):
     root = tmp_path / "submitted"
-    _write(root / "dave" / "a.ipynb")
-    _write(root / "dave" / "b.ipynb")
+    wrong = SPAN.variants[0].source
+    _write(root / "dave" / "05_span_rule.ipynb", _answer(SPAN.solution))
+    _write(root / "dave" / "notes.ipynb")  # no answer in it: nothing to merge
+    _write(root / "gina" / "a.ipynb", _answer(SPAN.solution))
+    _write(root / "gina" / "b.ipynb", _answer(wrong))
     (root / "erin").mkdir()
     grades = {s.student: s.grades[0] for s in grade_submissions(root, _key(), progress=False)}
-    assert grades["dave"].status == grades["erin"].status == "malformed notebook"
-    assert "holds 2 notebooks (a.ipynb, b.ipynb); keep one" in grades["dave"].message
+    assert grades["dave"].status == "passed" and grades["dave"].score == 4
+    assert grades["gina"].status == "duplicate answer"
+    assert "answered in two notebooks (a.ipynb and b.ipynb); keep one" in grades["gina"].message
+    assert grades["erin"].status == "malformed notebook"
     assert "holds no notebook" in grades["erin"].message
 
 

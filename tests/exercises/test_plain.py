@@ -58,3 +58,9 @@ def test_malformed_plain_data_is_a_value_error():
     for bad in ({}, {"$what": 1}, {"$fraction": [1]}):
         with pytest.raises((ValueError, TypeError)):
             from_plain(bad)
+
+
+def test_values_read_back_encode_to_the_same_plain_form():
+    for value in ([Entry(Fraction(1, 2), -1), Span(0, 3, 1, 4, 1)], object(), {"a": (1, 2.5)}):
+        plain = to_plain(value)
+        assert to_plain(from_plain(plain)) == plain

@@ -61,3 +61,27 @@ def test_write_notebooks_refuses_a_file_as_folder(tmp_path):
     target.write_text("x")
     with pytest.raises(NotADirectoryError, match="is not a folder"):
         write_notebooks(target)
+
+
+def test_released_blank_notebooks_score_zero_and_solved_ones_full_marks(tmp_path):
+    from scanviz.exercises.grading import grade_submissions
+    from scanviz.exercises.key import ExerciseKey, new_key
+
+    write_notebooks(tmp_path / "class" / "blank")
+    write_notebooks(tmp_path / "class" / "solved", with_solutions=True)
+    key = new_key()
+    key = type(key)(
+        **{
+            **key.__dict__,
+            "exercises": {e: ExerciseKey(k.points, 2) for e, k in key.exercises.items()},
+        }
+    )
+    grades = {
+        s.student: s for s in grade_submissions(tmp_path / "class", key, jobs=2, progress=False)
+    }
+    solved, blank = grades["solved"], grades["blank"]
+    assert [(g.exercise, g.status) for g in solved.grades] == [
+        (e.id, "passed") for e in exercises()
+    ]
+    assert solved.score == solved.max_score == sum(e.points for e in exercises())
+    assert blank.score == 0 and {g.status for g in blank.grades} == {"error"}
