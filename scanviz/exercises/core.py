@@ -20,12 +20,14 @@ reference's and names the known-wrong variant it matches.
 
 from __future__ import annotations
 
+import builtins
 import copy
 import dataclasses
 import hashlib
 import hmac
 import os
 import random
+import re
 import sysconfig
 import traceback
 from collections.abc import Callable, Mapping
@@ -269,7 +271,14 @@ class Verdict:
         return first[0] + (f" -- {detail}" if detail else "")
 
     def describe(self, reveal: bool = True) -> str:
-        """The diagnostics as plain text; hidden inputs appear only if `reveal`."""
+        """The diagnostics as plain text.
+
+        A failed hidden case is redacted unless `reveal`: its category, where it
+        first differs, the counts and the likely cause, but no value, raster or
+        error message (a student's exception could carry the inputs).
+        """
+        if self.hidden and not reveal and not self.passed:
+            return _redacted(self)
         name = (
             self.case.label
             if (reveal or not self.hidden)
@@ -306,6 +315,45 @@ class Verdict:
         if self.variant is not None:
             lines.append(f"  likely cause: {self.variant.hint}")
         return "\n".join(lines)
+
+
+def builtin_error_name(error: str) -> str:
+    """The exception's name if it is one of Python's own (a student's class name could be
+    made from the inputs), else "an exception".
+
+    >>> builtin_error_name("ValueError: [(9/4, 1)] (in span_rule, line 2)"), builtin_error_name("X_9_4: boom")
+    ('ValueError', 'an exception')
+    """
+    name = re.match(r"\w*", error).group()
+    known = getattr(builtins, name, None)
+    return name if isinstance(known, type) and issubclass(known, BaseException) else "an exception"
+
+
+def _redacted(verdict: Verdict) -> str:
+    """A failed hidden case without its inputs: category, where it differs, counts, cause."""
+    lines = [f"hidden case {verdict.case.category or 'hidden case'!r}: FAILED"]
+    if verdict.error is not None:
+        kind = builtin_error_name(verdict.error)
+        lines.append(f"  your code raised {kind} (messages are not shown for hidden cases)")
+    if verdict.trace is not None:
+        place = f", {verdict.trace.place}" if verdict.trace.place else ""
+        lines.append(
+            f"  first difference at event {verdict.trace.index + 1} of {verdict.trace.length}"
+            f" -- {verdict.trace.kind}{place}"
+        )
+    if verdict.wrong_calls:
+        lines.append(
+            f"  with the reference state fed in at every call, yours differs at "
+            f"{len(verdict.wrong_calls)} of {verdict.calls_total}"
+        )
+    if verdict.result is not None:
+        lines.append("  the result differs from the reference's")
+    if verdict.raster is not None:
+        r = verdict.raster
+        lines.append(f"  samples: {r.matched} matched, {r.extra} extra, {r.missing} missing")
+    if verdict.variant is not None:
+        lines.append(f"  likely cause: {verdict.variant.hint}")
+    return "\n".join(lines)
 
 
 def judge(

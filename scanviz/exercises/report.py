@@ -31,7 +31,6 @@ copy of the id (`folder_names`): only letters, digits, ``.``, ``_`` and
 from __future__ import annotations
 
 import base64
-import builtins
 import csv
 import html
 import io
@@ -45,7 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from .catalog import exercises
-from .core import Verdict
+from .core import Verdict, builtin_error_name
 from .key import CourseKey
 from .results import STATUSES, ExerciseGrade, StudentGrade
 
@@ -104,48 +103,9 @@ class CaseReport:
 def case_report(verdict: Verdict, reveal: bool) -> CaseReport:
     """How `verdict` is shown: in full, or redacted for a hidden case if not `reveal`."""
     if verdict.hidden and not reveal and not verdict.passed:
-        return CaseReport(verdict, _redacted(verdict), None)
+        return CaseReport(verdict, verdict.describe(reveal=False), None)
     image = verdict.raster.image() if verdict.raster is not None else None
     return CaseReport(verdict, verdict.describe(reveal=reveal), image)
-
-
-def _error_kind(error: str) -> str:
-    """The exception's name if it is one of Python's own (a student's class name could be
-    made from the inputs), else "an exception".
-
-    >>> _error_kind("ValueError: [(9/4, 1)] (in span_rule, line 2)"), _error_kind("X_9_4: boom")
-    ('ValueError', 'an exception')
-    """
-    name = re.match(r"\w*", error).group()
-    known = getattr(builtins, name, None)
-    return name if isinstance(known, type) and issubclass(known, BaseException) else "an exception"
-
-
-def _redacted(verdict: Verdict) -> str:
-    """A failed hidden case without its inputs: category, where it differs, counts, cause."""
-    lines = [f"hidden case {verdict.case.category or 'hidden case'!r}: FAILED"]
-    if verdict.error is not None:
-        kind = _error_kind(verdict.error)
-        lines.append(f"  your code raised {kind} (messages are not shown for hidden cases)")
-    if verdict.trace is not None:
-        place = f", {verdict.trace.place}" if verdict.trace.place else ""
-        lines.append(
-            f"  first difference at event {verdict.trace.index + 1} of {verdict.trace.length}"
-            f" -- {verdict.trace.kind}{place}"
-        )
-    if verdict.wrong_calls:
-        lines.append(
-            f"  with the reference state fed in at every call, yours differs at "
-            f"{len(verdict.wrong_calls)} of {verdict.calls_total}"
-        )
-    if verdict.result is not None:
-        lines.append("  the result differs from the reference's")
-    if verdict.raster is not None:
-        r = verdict.raster
-        lines.append(f"  samples: {r.matched} matched, {r.extra} extra, {r.missing} missing")
-    if verdict.variant is not None:
-        lines.append(f"  likely cause: {verdict.variant.hint}")
-    return "\n".join(lines)
 
 
 def grade_message(grade: ExerciseGrade, reveal: bool) -> str:
@@ -159,7 +119,7 @@ def grade_message(grade: ExerciseGrade, reveal: bool) -> str:
         return message
     for verdict in grade.verdicts:
         if verdict.hidden and verdict.error:
-            kind = _error_kind(verdict.error)
+            kind = builtin_error_name(verdict.error)
             message = message.replace(
                 verdict.error, f"{kind} (in a hidden case: message not shown)"
             )
