@@ -85,3 +85,16 @@ def test_released_blank_notebooks_score_zero_and_solved_ones_full_marks(tmp_path
     ]
     assert solved.score == solved.max_score == sum(e.points for e in exercises())
     assert blank.score == 0 and {g.status for g in blank.grades} == {"error"}
+
+
+def test_docs_list_every_exercise_variant_and_step():
+    from scanviz import steps
+
+    text = (Path(__file__).parents[2] / "docs" / "exercises.md").read_text(encoding="utf-8")
+    for exercise in exercises():
+        row = next((line for line in text.splitlines() if f"| `{exercise.id}` |" in line), "")
+        assert row, f"docs/exercises.md has no catalog row for {exercise.id!r}"
+        for variant in exercise.variants:
+            assert f"`{variant.name}`" in row, (exercise.id, variant.name)
+    for step in steps.table():
+        assert f"| `{step.name}` | `{step.module.removeprefix('scanviz.')}` |" in text, step.name
