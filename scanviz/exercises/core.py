@@ -496,7 +496,7 @@ def hidden_cases(exercise: Exercise, secret: str, count: int, student: str = "")
     for k in range(count):
         message = f"{exercise.id}:{k}:{student}".encode()
         digest = hmac.new(secret.encode(), message, hashlib.sha256).digest()
-        case = exercise.generate(random.Random(int.from_bytes(digest[:8], "big")))
+        case = _drawn(exercise, random.Random(int.from_bytes(digest[:8], "big")))
         cases.append(Case(case.label or f"hidden {k + 1}", case.inputs, case.category))
     return cases
 
@@ -504,7 +504,20 @@ def hidden_cases(exercise: Exercise, secret: str, count: int, student: str = "")
 def practice_cases(exercise: Exercise, count: int, seed: int | None = None) -> list[Case]:
     """`count` random cases from the hidden cases' distribution, from a local seed."""
     rng = random.Random(seed)
-    return [exercise.generate(rng) for _ in range(count)]
+    return [_drawn(exercise, rng) for _ in range(count)]
+
+
+DRAWS = 50  # generated cases tried before one that calls the step is found
+
+
+def _drawn(exercise: Exercise, rng: random.Random) -> Case:
+    """A generated case; for a step exercise, one in which the reference calls the step
+    (else an answer that is never called, a stub included, would pass it)."""
+    for _ in range(DRAWS):
+        case = exercise.generate(rng)
+        if exercise.kind != "step" or reference_outcome(exercise, case).calls:
+            return case
+    return case
 
 
 def score(exercise: Exercise, verdicts: list[Verdict]) -> float:

@@ -1,5 +1,6 @@
 """Released notebooks: one per exercise, in the repository exactly as the catalog makes them."""
 
+import dataclasses
 from pathlib import Path
 
 import nbformat
@@ -69,12 +70,10 @@ def test_released_blank_notebooks_score_zero_and_solved_ones_full_marks(tmp_path
 
     write_notebooks(tmp_path / "class" / "blank")
     write_notebooks(tmp_path / "class" / "solved", with_solutions=True)
-    key = new_key()
-    key = type(key)(
-        **{
-            **key.__dict__,
-            "exercises": {e: ExerciseKey(k.points, 2) for e, k in key.exercises.items()},
-        }
+    key = dataclasses.replace(
+        new_key(),
+        secret="fixed secret of the release test",
+        exercises={e.id: ExerciseKey(e.points, 2) for e in exercises()},
     )
     grades = {
         s.student: s for s in grade_submissions(tmp_path / "class", key, jobs=2, progress=False)
@@ -98,3 +97,14 @@ def test_docs_list_every_exercise_variant_and_step():
             assert f"`{variant.name}`" in row, (exercise.id, variant.name)
     for step in steps.table():
         assert f"| `{step.name}` | `{step.module.removeprefix('scanviz.')}` |" in text, step.name
+
+
+@pytest.mark.parametrize(
+    "exercise", [e for e in exercises() if e.kind == "step"], ids=lambda e: e.id
+)
+def test_every_case_of_a_step_exercise_calls_the_step(exercise):
+    # A case the step never runs in would give full marks to any answer, the stub included.
+    from scanviz.exercises.core import practice_cases, reference_outcome
+
+    for case in [*exercise.public, *practice_cases(exercise, 10, seed=1)]:
+        assert reference_outcome(exercise, case).calls, (exercise.id, case.label)
