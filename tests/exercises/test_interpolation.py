@@ -1,66 +1,17 @@
 """The span_interpolation exercise (the step span_step of scanviz.raster.interpolate)."""
 
-import pytest
-
 from scanviz.exercises import get
 from scanviz.exercises.core import (
     Case,
     compile_answer,
     hidden_cases,
-    judge,
-    reference_outcome,
-    run_case,
-    score,
-    variant_outcomes,
 )
 from scanviz.trace import Recorder
 from scanviz.visibility.zbuffer import ScreenPolygons, zbuffer
 
+from .support import grade, known_variant
+
 EXERCISE = get("span_interpolation")
-
-
-def _grade(source, cases):
-    function = compile_answer(source, EXERCISE.answer)
-    return [
-        judge(
-            EXERCISE,
-            case,
-            run_case(EXERCISE, function, case),
-            reference_outcome(EXERCISE, case),
-            variants=variant_outcomes(EXERCISE, case),
-        )
-        for case in cases
-    ]
-
-
-def _variant(name):
-    return next(v for v in EXERCISE.variants if v.name == name)
-
-
-def test_solution_scores_full_marks_on_public_and_hidden_cases():
-    verdicts = _grade(EXERCISE.solution, [*EXERCISE.public, *hidden_cases(EXERCISE, "test", 20)])
-    assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
-    assert score(EXERCISE, verdicts) == EXERCISE.points
-
-
-def test_stub_scores_zero_and_says_it_raised():
-    verdicts = _grade(EXERCISE.stub, EXERCISE.public)
-    assert score(EXERCISE, verdicts) == 0
-    assert all(v.error.startswith("NotImplementedError (in span_step") for v in verdicts)
-
-
-@pytest.mark.parametrize("variant", EXERCISE.variants, ids=lambda v: v.name)
-def test_every_variant_fails_a_public_case_and_is_named(variant):
-    verdicts = _grade(variant.source, EXERCISE.public)
-    assert score(EXERCISE, verdicts) < EXERCISE.points
-    assert any(v.variant is not None and v.variant.name == variant.name for v in verdicts)
-    assert all(v.variant is None or v.variant.name == variant.name for v in verdicts)
-
-
-def test_hidden_cases_come_from_the_secret_only():
-    first = hidden_cases(EXERCISE, "secret one", 6)
-    assert first == hidden_cases(EXERCISE, "secret one", 6)
-    assert first != hidden_cases(EXERCISE, "secret two", 6)
 
 
 def test_the_reference_step_plugged_in_gives_the_default_trace():
@@ -76,7 +27,7 @@ def test_the_reference_step_plugged_in_gives_the_default_trace():
 
 def test_a_replaced_step_runs_untraced_too():
     # zbuffer without a tracer runs the compiled kernel, unless a step is replaced.
-    flat = compile_answer(_variant("values_not_stepped").source, EXERCISE.answer)
+    flat = compile_answer(known_variant(EXERCISE, "values_not_stepped").source, EXERCISE.answer)
     case = EXERCISE.public[0]
     reference = EXERCISE.call(EXERCISE.reference, dict(case.inputs), None)
     mine = EXERCISE.call(flat, dict(case.inputs), None)
@@ -101,8 +52,8 @@ def test_values_by_depth_slope_diagnostic_on_a_ramp():
     # steps dz/dx = 0.5, d(red)/dx = 0.25 (all exact in binary). Stepping the values by
     # dz/dx gives red = 0.5 at x = 1 instead of 0.25. The depth is right, so the trace
     # agrees; all 4 rows x 3 steps are wrong.
-    variant = _variant("values_by_depth_slope")
-    text = _grade(variant.source, [SQUARE])[0].describe()
+    variant = known_variant(EXERCISE, "values_by_depth_slope")
+    text = grade(EXERCISE, variant.source, [SQUARE])[0].describe()
     assert "first difference at event" not in text
     assert (
         "yours differs at 12 of 12: pixel (1, 0), pixel (2, 0), pixel (3, 0), pixel (1, 1)" in text

@@ -1,72 +1,18 @@
 """The midpoint exercises: midpoint_decision (the step) and midpoint_loop (the whole loop)."""
 
-import pytest
-
 from scanviz import midpoint_line, steps
 from scanviz.exercises import get
 from scanviz.exercises.core import (
-    compile_answer,
     hidden_cases,
-    judge,
-    reference_outcome,
-    run_case,
-    score,
-    variant_outcomes,
 )
 from scanviz.trace import Recorder
+
+from .support import grade, known_variant
 
 DECISION = get("midpoint_decision")
 LOOP = get("midpoint_loop")
 EXERCISES = [DECISION, LOOP]
 VARIANTS = [(e, v) for e in EXERCISES for v in e.variants]
-
-
-def _grade(exercise, source, cases):
-    function = compile_answer(source, exercise.answer)
-    return [
-        judge(
-            exercise,
-            case,
-            run_case(exercise, function, case),
-            reference_outcome(exercise, case),
-            variants=variant_outcomes(exercise, case),
-        )
-        for case in cases
-    ]
-
-
-def _variant(exercise, name):
-    return next(v for v in exercise.variants if v.name == name)
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_solution_scores_full_marks_on_public_and_hidden_cases(exercise):
-    cases = [*exercise.public, *hidden_cases(exercise, "test", 20)]
-    verdicts = _grade(exercise, exercise.solution, cases)
-    assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
-    assert score(exercise, verdicts) == exercise.points
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_stub_scores_zero_and_says_it_raised(exercise):
-    verdicts = _grade(exercise, exercise.stub, exercise.public)
-    assert score(exercise, verdicts) == 0
-    assert all(v.error.startswith("NotImplementedError (in ") for v in verdicts)
-
-
-@pytest.mark.parametrize(("exercise", "variant"), VARIANTS, ids=lambda x: getattr(x, "name", ""))
-def test_every_variant_fails_a_public_case_and_is_named(exercise, variant):
-    verdicts = _grade(exercise, variant.source, exercise.public)
-    assert score(exercise, verdicts) < exercise.points
-    assert any(v.variant is not None and v.variant.name == variant.name for v in verdicts)
-    assert all(v.variant is None or v.variant.name == variant.name for v in verdicts)
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_hidden_cases_come_from_the_secret_only(exercise):
-    first = hidden_cases(exercise, "secret one", 6)
-    assert first == hidden_cases(exercise, "secret one", 6)
-    assert first != hidden_cases(exercise, "secret two", 6)
 
 
 def test_hidden_cases_cover_every_octant_and_ties():
@@ -100,9 +46,9 @@ def test_tie_diagonal_diagnostic_on_the_line_through_midpoints():
     # (1, 1) to (9, 5): dx = 8, dy = 4, so d starts at 8 - 2 * 4 = 0 and alternates
     # 0, -8, 0, -8, ...: ties at the pixels (1, 1), (3, 2), (5, 3), (7, 4), where the
     # reference steps east (axial) and d <= 0 steps north-east.
-    variant = _variant(DECISION, "tie_diagonal")
+    variant = known_variant(DECISION, "tie_diagonal")
     case = next(c for c in DECISION.public if c.label == "through a midpoint (tie)")
-    text = _grade(DECISION, variant.source, [case])[0].describe()
+    text = grade(DECISION, variant.source, [case])[0].describe()
     assert "first difference at event 2 of 10 -- line_step, pixel (1, 1)" in text
     assert "choice: yours 'diagonal', reference 'axial'" in text
     assert "yours differs at 4 of 8: pixel (1, 1), pixel (3, 2), pixel (5, 3), pixel (7, 4)" in text
@@ -114,8 +60,8 @@ def test_forgot_last_pixel_diagnostic_on_the_shallow_line():
     # (0, 0) to (11, 4): d starts at 11 - 8 = 3 and runs 3, -5, 9, 1, -7, 7, -1, 13, 5,
     # -3, 11, 3 (axial -8, diagonal +14): the last pixel (11, 4) has d = 3. Twelve pixels,
     # so the reference has 1 + 12 events and the variant stops one short.
-    variant = _variant(LOOP, "forgot_last_pixel")
-    text = _grade(LOOP, variant.source, LOOP.public[:1])[0].describe()
+    variant = known_variant(LOOP, "forgot_last_pixel")
+    text = grade(LOOP, variant.source, LOOP.public[:1])[0].describe()
     assert "first difference at event 13 of 13 -- line_step, pixel (11, 4)" in text
     assert "missing in yours; reference has line_step(x=11, y=4, d=3, choice='last')" in text
     assert "samples: 11 matched (#), 0 extra (!), 1 missing (?)" in text
@@ -124,7 +70,7 @@ def test_forgot_last_pixel_diagnostic_on_the_shallow_line():
 def test_not_doubled_keeps_the_pixels_and_shows_the_halved_d():
     # d = dx/2 - dy rounded down decides exactly as d = dx - 2 dy; only d itself differs:
     # on (0, 0) to (11, 4), 11 // 2 - 4 = 1 against 3.
-    variant = _variant(LOOP, "not_doubled")
-    verdict = _grade(LOOP, variant.source, LOOP.public[:1])[0]
+    variant = known_variant(LOOP, "not_doubled")
+    verdict = grade(LOOP, variant.source, LOOP.public[:1])[0]
     assert verdict.raster is None and verdict.result is None
     assert "d_start: yours 1, reference 3" in verdict.describe()

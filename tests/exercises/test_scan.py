@@ -7,13 +7,11 @@ from scanviz.exercises import get
 from scanviz.exercises.core import (
     compile_answer,
     hidden_cases,
-    judge,
-    reference_outcome,
     run_case,
-    score,
-    variant_outcomes,
 )
 from scanviz.trace import Recorder
+
+from .support import grade, known_variant
 
 ENTRY = get("edge_table_entry")
 AET = get("aet_update")
@@ -21,24 +19,6 @@ LOOP = get("scan_loop")
 EXERCISES = [ENTRY, AET, LOOP]
 VARIANTS = [(e, v) for e in EXERCISES for v in e.variants]
 STEPS = [ENTRY, AET]
-
-
-def _grade(exercise, source, cases):
-    function = compile_answer(source, exercise.answer)
-    return [
-        judge(
-            exercise,
-            case,
-            run_case(exercise, function, case),
-            reference_outcome(exercise, case),
-            variants=variant_outcomes(exercise, case),
-        )
-        for case in cases
-    ]
-
-
-def _variant(exercise, name):
-    return next(v for v in exercise.variants if v.name == name)
 
 
 def _public(exercise, label):
@@ -51,36 +31,6 @@ def _default_trace(inputs):
         inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=recorder
     )
     return recorder.trace()
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_solution_scores_full_marks_on_public_and_hidden_cases(exercise):
-    cases = [*exercise.public, *hidden_cases(exercise, "test", 20)]
-    verdicts = _grade(exercise, exercise.solution, cases)
-    assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
-    assert score(exercise, verdicts) == exercise.points
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_stub_scores_zero_and_says_it_raised(exercise):
-    verdicts = _grade(exercise, exercise.stub, exercise.public)
-    assert score(exercise, verdicts) == 0
-    assert all(v.error.startswith("NotImplementedError (in ") for v in verdicts)
-
-
-@pytest.mark.parametrize(("exercise", "variant"), VARIANTS, ids=lambda x: getattr(x, "name", ""))
-def test_every_variant_fails_a_public_case_and_is_named(exercise, variant):
-    verdicts = _grade(exercise, variant.source, exercise.public)
-    assert score(exercise, verdicts) < exercise.points
-    assert any(v.variant is not None and v.variant.name == variant.name for v in verdicts)
-    assert all(v.variant is None or v.variant.name == variant.name for v in verdicts)
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_hidden_cases_come_from_the_secret_only(exercise):
-    first = hidden_cases(exercise, "secret one", 6)
-    assert first == hidden_cases(exercise, "secret one", 6)
-    assert first != hidden_cases(exercise, "secret two", 6)
 
 
 @pytest.mark.parametrize("exercise", STEPS, ids=lambda e: e.id)
@@ -110,8 +60,8 @@ def test_floor_bucket_diagnostic_on_the_triangle_off_the_sample_rows():
     # (1, 1/2) -> (7, 9/4) -> (7/2, 27/4): every ymin (1/2, 9/4, 1/2) lies between two sample
     # rows, so floor and ceil differ for all 3 edges; edge 0's bucket is floor(1/2) = 0
     # against ceil(1/2) = 1, the first field of the edge table that differs.
-    variant = _variant(ENTRY, "floor_bucket")
-    text = _grade(ENTRY, variant.source, [_public(ENTRY, "triangle off the sample rows")])[
+    variant = known_variant(ENTRY, "floor_bucket")
+    text = grade(ENTRY, variant.source, [_public(ENTRY, "triangle off the sample rows")])[
         0
     ].describe()
     assert "first difference at event 1 of " in text
@@ -128,8 +78,8 @@ def test_float_accumulation_diagnostic_on_the_slide_polygon():
     # so x agrees and the first difference is x_exact, None for a float. Rows 2-10 step an
     # edge of non-dyadic slope (edge 0, and edge 1 with -4/3 from row 6): 9 of the 11 calls
     # (rows 1-11) differ; row 1 only adds edges and row 11 only retires them.
-    variant = _variant(AET, "float_accumulation")
-    text = _grade(AET, variant.source, [_public(AET, "the slide polygon (UMBC)")])[0].describe()
+    variant = known_variant(AET, "float_accumulation")
+    text = grade(AET, variant.source, [_public(AET, "the slide polygon (UMBC)")])[0].describe()
     assert "first difference at event 4 of 27 -- aet_sorted, row 2\n" in text
     assert "entries[0].x_exact: yours None, reference 37/10 (3 7/10 = 3.7)" in text
     assert "events 1-3 matched" in text
@@ -141,8 +91,8 @@ def test_closed_spans_diagnostic_on_the_slide_polygon():
     # ends at floor(12) + 1 = 13. The trace has 27 events: row 1 three (activated, AET, span),
     # rows 2-4 two each, row 5 four (activated, AET, two spans), rows 6-7 three each, row 8
     # three (retired, AET, span), rows 9-10 two each, row 11 one (retired).
-    variant = _variant(LOOP, "closed_spans")
-    text = _grade(LOOP, variant.source, [_public(LOOP, "the slide polygon (UMBC)")])[0].describe()
+    variant = known_variant(LOOP, "closed_spans")
+    text = grade(LOOP, variant.source, [_public(LOOP, "the slide polygon (UMBC)")])[0].describe()
     assert (
         "first difference at event 3 of 27 -- span, row 1\n    x_end: yours 13, reference 12"
         in text
@@ -154,8 +104,8 @@ def test_closed_spans_diagnostic_on_the_slide_polygon():
 def test_activate_late_shows_the_missing_activation_first():
     # The late variant takes no edge on its bucket row: the first event, row 1's activation
     # of edges 0 and 3, is missing; both come in one row late, on row 2.
-    variant = _variant(AET, "activate_late")
-    verdict = _grade(AET, variant.source, [_public(AET, "the slide polygon (UMBC)")])[0]
+    variant = known_variant(AET, "activate_late")
+    verdict = grade(AET, variant.source, [_public(AET, "the slide polygon (UMBC)")])[0]
     text = verdict.describe()
     assert "first difference at event 1 of 27 -- edges_activated, row 1" in text
     assert "missing in yours; reference has edges_activated(polygon=0, y=1, edges=[0, 3])" in text

@@ -5,68 +5,16 @@ import pytest
 from scanviz import triangle_samples
 from scanviz.exercises import get
 from scanviz.exercises.core import (
-    compile_answer,
     hidden_cases,
-    judge,
-    reference_outcome,
-    run_case,
-    score,
-    variant_outcomes,
 )
 from scanviz.trace import Recorder
+
+from .support import grade, known_variant
 
 OWNERSHIP = get("ownership_ties")
 EDGES = get("edge_functions")
 EXERCISES = [OWNERSHIP, EDGES]
 VARIANTS = [(e, v) for e in EXERCISES for v in e.variants]
-
-
-def _grade(exercise, source, cases):
-    function = compile_answer(source, exercise.answer)
-    return [
-        judge(
-            exercise,
-            case,
-            run_case(exercise, function, case),
-            reference_outcome(exercise, case),
-            variants=variant_outcomes(exercise, case),
-        )
-        for case in cases
-    ]
-
-
-def _variant(exercise, name):
-    return next(v for v in exercise.variants if v.name == name)
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_solution_scores_full_marks_on_public_and_hidden_cases(exercise):
-    cases = [*exercise.public, *hidden_cases(exercise, "test", 20)]
-    verdicts = _grade(exercise, exercise.solution, cases)
-    assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
-    assert score(exercise, verdicts) == exercise.points
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_stub_scores_zero_and_says_it_raised(exercise):
-    verdicts = _grade(exercise, exercise.stub, exercise.public)
-    assert score(exercise, verdicts) == 0
-    assert all(v.error.startswith(f"NotImplementedError (in {exercise.answer}") for v in verdicts)
-
-
-@pytest.mark.parametrize(("exercise", "variant"), VARIANTS, ids=lambda x: getattr(x, "name", ""))
-def test_every_variant_fails_a_public_case_and_is_named(exercise, variant):
-    verdicts = _grade(exercise, variant.source, exercise.public)
-    assert score(exercise, verdicts) < exercise.points
-    assert any(v.variant is not None and v.variant.name == variant.name for v in verdicts)
-    assert all(v.variant is None or v.variant.name == variant.name for v in verdicts)
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
-def test_hidden_cases_come_from_the_secret_only(exercise):
-    first = hidden_cases(exercise, "secret one", 6)
-    assert first == hidden_cases(exercise, "secret one", 6)
-    assert first != hidden_cases(exercise, "secret two", 6)
 
 
 @pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
@@ -101,8 +49,8 @@ def test_closed_diagnostic_on_the_split_square():
     # (1,1) is clockwise (orientation -1 flips the signs): its top edge 0 (a = 0, b = 6)
     # and the diagonal, edge 1 (a = 6), own nothing; its left edge 2 (a = -6) owns. Closed
     # owns all six edges, so the diagonal's samples, (1, 1) first, are drawn twice.
-    variant = _variant(OWNERSHIP, "closed")
-    text = _grade(OWNERSHIP, variant.source, OWNERSHIP.public[:1])[0].describe()
+    variant = known_variant(OWNERSHIP, "closed")
+    text = grade(OWNERSHIP, variant.source, OWNERSHIP.public[:1])[0].describe()
     assert "first difference at event 1 of 14 -- triangle_setup" in text
     assert "edges[1].owns_boundary: yours True, reference False" in text
     assert (
@@ -117,8 +65,8 @@ def test_c_wrong_diagnostic_on_the_right_triangle():
     # edge 1, (48,0) -> (0,40), has c != 0: x0 y1 - x1 y0 = 48 * 40 = 1920. With the sign
     # of c flipped, E_1 < 0 on every sample, so none of the 20 samples with
     # 5x + 6y < 30 (x, y >= 0) is covered.
-    variant = _variant(EDGES, "c_wrong")
-    text = _grade(EDGES, variant.source, EDGES.public[:1])[0].describe()
+    variant = known_variant(EDGES, "c_wrong")
+    text = grade(EDGES, variant.source, EDGES.public[:1])[0].describe()
     assert "first difference at event 1 of 6 -- triangle_setup" in text
     assert "edges[1].c: yours -1920, reference 1920" in text
     assert "yours differs at 1 of 3: triangle 0, edge 1" in text

@@ -5,35 +5,17 @@ import pytest
 from scanviz import steps
 from scanviz.exercises import get
 from scanviz.exercises.core import (
-    compile_answer,
     hidden_cases,
-    judge,
-    reference_outcome,
-    run_case,
-    score,
-    variant_outcomes,
 )
 from scanviz.exercises.viewing import case_camera
 from scanviz.trace import Recorder
 from scanviz.transform import clip_polygon, cull_faces, transform_vertices
 
+from .support import grade
+
 IDS = ("backface_cull", "clip_plane", "eye_from_world")
 EXERCISES = [get(exercise_id) for exercise_id in IDS]
 VARIANTS = [(e, v) for e in EXERCISES for v in e.variants]
-
-
-def _grade(exercise, source, cases, variants=True):
-    function = compile_answer(source, exercise.answer)
-    return [
-        judge(
-            exercise,
-            case,
-            run_case(exercise, function, case),
-            reference_outcome(exercise, case),
-            variants=variant_outcomes(exercise, case) if variants else None,
-        )
-        for case in cases
-    ]
 
 
 def _variant(exercise_id, name):
@@ -47,36 +29,6 @@ def test_the_exercises_have_their_numbers_and_steps():
         (12, "clip_against_plane"),
         (13, "viewing_matrix"),
     ]
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=IDS)
-def test_solution_scores_full_marks_on_public_and_hidden_cases(exercise):
-    cases = [*exercise.public, *hidden_cases(exercise, "test", 20)]
-    verdicts = _grade(exercise, exercise.solution, cases, variants=False)
-    assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
-    assert score(exercise, verdicts) == exercise.points
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=IDS)
-def test_stub_scores_zero_and_says_it_raised(exercise):
-    verdicts = _grade(exercise, exercise.stub, exercise.public, variants=False)
-    assert score(exercise, verdicts) == 0
-    assert all(v.error.startswith(f"NotImplementedError (in {exercise.answer}") for v in verdicts)
-
-
-@pytest.mark.parametrize(("exercise", "variant"), VARIANTS, ids=[v.name for _, v in VARIANTS])
-def test_every_variant_fails_a_public_case_and_is_named(exercise, variant):
-    verdicts = _grade(exercise, variant.source, exercise.public)
-    assert score(exercise, verdicts) < exercise.points
-    assert any(v.variant is not None and v.variant.name == variant.name for v in verdicts)
-    assert all(v.variant is None or v.variant.name == variant.name for v in verdicts)
-
-
-@pytest.mark.parametrize("exercise", EXERCISES, ids=IDS)
-def test_hidden_cases_come_from_the_secret_only(exercise):
-    first = hidden_cases(exercise, "secret one", 5)
-    assert first == hidden_cases(exercise, "secret one", 5)
-    assert first != hidden_cases(exercise, "secret two", 5)
 
 
 # The entry points run without any step replaced, for the trace the exercise must reproduce.
@@ -153,7 +105,7 @@ def viewing_matrix(eye, look_at, up):
 @pytest.mark.parametrize("exercise", EXERCISES, ids=IDS)
 def test_a_correct_answer_rounding_otherwise_passes(exercise):
     cases = [*exercise.public, *hidden_cases(exercise, "test", 20)]
-    verdicts = _grade(exercise, OTHER_CORRECT[exercise.id], cases, variants=False)
+    verdicts = grade(exercise, OTHER_CORRECT[exercise.id], cases, variants=False)
     assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
 
 
@@ -162,7 +114,7 @@ def test_sign_flipped_diagnostic_on_the_cube_from_a_corner():
     # from the eye (3, 4, 5), V = (-4, -4, -5) and V . N = 32 >= 0: culled. The flipped test
     # (V . N <= 0) keeps it. No face plane holds the eye, so all 6 verdicts flip.
     exercise, variant = _variant("backface_cull", "sign_flipped")
-    text = _grade(exercise, variant.source, exercise.public[:1])[0].describe()
+    text = grade(exercise, variant.source, exercise.public[:1])[0].describe()
     assert "first difference at event 1 of 6 -- face_culled" in text
     assert "culled: yours False, reference True" in text
     assert "yours differs at 6 of 6: face 0, face 1, face 2, face 3, face 4, face 5" in text
@@ -174,7 +126,7 @@ def test_wrong_parameter_diagnostic_on_the_triangle_out_of_x_equals_w():
     # from vertex 0 (distance 1) leaves at t = 1 / (1 + 2) = 1/3: x = 1. Using 1 - t = 2/3
     # puts the crossing at x = 2.
     exercise, variant = _variant("clip_plane", "wrong_parameter")
-    text = _grade(exercise, variant.source, exercise.public[:1])[0].describe()
+    text = grade(exercise, variant.source, exercise.public[:1])[0].describe()
     assert "first difference at event 1 of 1 -- polygon_clipped" in text
     assert "vertices[1][0]: yours 2.0, reference 1.0" in text
     assert "yours differs at 1 of 1: right plane x = w" in text
@@ -185,7 +137,7 @@ def test_translation_not_rotated_diagnostic_on_the_camera_on_x():
     # -R @ eye = (0, 0, -5); the unrotated column -eye = (-5, 0, 0) differs first in row 0,
     # entry 3 of the flat matrix of the "eye" stage (event 2, after the "world" stage).
     exercise, variant = _variant("eye_from_world", "translation_not_rotated")
-    text = _grade(exercise, variant.source, exercise.public[1:2])[0].describe()
+    text = grade(exercise, variant.source, exercise.public[1:2])[0].describe()
     assert "first difference at event 2 of 6 -- vertices_transformed" in text
     assert "matrix[3]: yours -5.0, reference 0.0" in text
     assert "first: [0][3]: yours -5.0, reference 0.0" in text

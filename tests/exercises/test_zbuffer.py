@@ -1,70 +1,24 @@
 """The z-buffer depth-test exercise (10): depth_test plugged into the real render."""
 
 import numpy as np
-import pytest
 
 from scanviz import steps
 from scanviz.exercises import get
 from scanviz.exercises.core import (
-    compile_answer,
     hidden_cases,
-    judge,
-    reference_outcome,
-    run_case,
-    score,
-    variant_outcomes,
 )
 from scanviz.exercises.zbuffer import case_scene
 from scanviz.pipeline import render
 from scanviz.scene.builtin import builtin_scene
 from scanviz.trace import Recorder
 
+from .support import grade
+
 EXERCISE = get("zbuffer_depth")
-
-
-def _grade(source, cases, variants=True):
-    function = compile_answer(source, EXERCISE.answer)
-    return [
-        judge(
-            EXERCISE,
-            case,
-            run_case(EXERCISE, function, case),
-            reference_outcome(EXERCISE, case),
-            variants=variant_outcomes(EXERCISE, case) if variants else None,
-        )
-        for case in cases
-    ]
 
 
 def test_the_exercise_has_its_number_and_step():
     assert (EXERCISE.number, EXERCISE.step, EXERCISE.rtol) == (10, "depth_test", 0.0)
-
-
-def test_solution_scores_full_marks_on_public_and_hidden_cases():
-    cases = [*EXERCISE.public, *hidden_cases(EXERCISE, "test", 20)]
-    verdicts = _grade(EXERCISE.solution, cases, variants=False)
-    assert all(v.passed for v in verdicts), [v.describe() for v in verdicts if not v.passed]
-    assert score(EXERCISE, verdicts) == EXERCISE.points
-
-
-def test_stub_scores_zero_and_says_it_raised():
-    verdicts = _grade(EXERCISE.stub, EXERCISE.public, variants=False)
-    assert score(EXERCISE, verdicts) == 0
-    assert all(v.error.startswith("NotImplementedError (in depth_test") for v in verdicts)
-
-
-@pytest.mark.parametrize("variant", EXERCISE.variants, ids=lambda v: v.name)
-def test_every_variant_fails_a_public_case_and_is_named(variant):
-    verdicts = _grade(variant.source, EXERCISE.public)
-    assert score(EXERCISE, verdicts) < EXERCISE.points
-    assert any(v.variant is not None and v.variant.name == variant.name for v in verdicts)
-    assert all(v.variant is None or v.variant.name == variant.name for v in verdicts)
-
-
-def test_hidden_cases_come_from_the_secret_only():
-    first = hidden_cases(EXERCISE, "secret one", 5)
-    assert first == hidden_cases(EXERCISE, "secret one", 5)
-    assert first != hidden_cases(EXERCISE, "secret two", 5)
 
 
 def test_the_reference_plugged_in_gives_the_default_trace():
@@ -92,7 +46,7 @@ def test_ties_to_later_diagnostic_on_the_two_squares():
     # at (3, 3), already held by polygon 0 at the same depth 8/16: a tie, which the earlier
     # polygon keeps. <= takes it, and the 3 other shared samples (4, 3), (3, 4), (4, 4).
     variant = next(v for v in EXERCISE.variants if v.name == "ties_to_later")
-    text = _grade(variant.source, EXERCISE.public[1:2])[0].describe()
+    text = grade(EXERCISE, variant.source, EXERCISE.public[1:2])[0].describe()
     assert "first difference at event 17 of 48 -- depth_test, polygon 1, pixel (3, 3)" in text
     assert "passed: yours True, reference False" in text
     assert (
