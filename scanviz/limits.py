@@ -17,6 +17,8 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import signal
+import threading
 from collections.abc import Iterator
 from contextvars import ContextVar
 from pathlib import Path
@@ -179,3 +181,27 @@ def json_nesting(text: str) -> tuple[int, str]:
     opening = (brackets == ord("[")) | (brackets == ord("{"))
     depth = int(np.cumsum(np.where(opening, 1, -1).astype(np.int64)).max(initial=0))
     return depth, outside_strings
+
+
+@contextlib.contextmanager
+def wall_clock_limit(seconds: float, error: type[BaseException], message: str) -> Iterator[None]:
+    """Raise ``error(message)`` inside the running code once `seconds` have passed.
+
+    It is raised again every 50 ms until the block ends, so code that catches
+    it once cannot run on. Use a BaseException subclass, which ``except
+    Exception`` lets by. A no-op outside the main thread (signals go there only).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def expire(signum, frame):
+        raise error(message)
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds, 0.05)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)

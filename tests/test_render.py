@@ -213,7 +213,9 @@ MODES = [
 
 def assert_clean(result):
     """No NaN anywhere; image and alpha in [0, 1]; depth finite or +inf (background)."""
-    assert np.isfinite(result.image).all() and (0 <= result.image).all() and (result.image <= 1).all()
+    assert (
+        np.isfinite(result.image).all() and (0 <= result.image).all() and (result.image <= 1).all()
+    )
     assert not np.isnan(result.depth).any() and not (result.depth == -np.inf).any()
     if result.alpha is not None:
         assert np.isfinite(result.alpha).all()
@@ -239,12 +241,20 @@ def test_issue8_d3_scenes_at_the_scene_limits_render(shading, visibility, perspe
     scenes = [
         scene_at(1e98, 5e98, 1e97, 1e99, (-1e97, 1e97, -1e97, 1e97), light=huge_light),
         scene_at(1e-90, 5e-90, 1e-91, 1e-88, (-1e-91, 1e-91, -1e-91, 1e-91)),
-        scene_at(1, 5, 1e-11, np.inf, (-1e-11, 1e-11, -1e-11, 1e-11),
-                 material=Material(exponent=1e4, fudge=1e99), light=huge_light),
+        scene_at(
+            1,
+            5,
+            1e-11,
+            np.inf,
+            (-1e-11, 1e-11, -1e-11, 1e-11),
+            material=Material(exponent=1e4, fudge=1e99),
+            light=huge_light,
+        ),
     ]
     for scene in scenes:
-        result = render(scene, 6, 5, shading=shading, visibility=visibility,
-                        perspective_correct=perspective)
+        result = render(
+            scene, 6, 5, shading=shading, visibility=visibility, perspective_correct=perspective
+        )
         assert_clean(result)
         assert result.stats.polygons_drawn > 0
 
@@ -256,15 +266,18 @@ def test_issue8_d3_an_internal_bound_names_the_object_and_the_rule():
     values = np.zeros((6, 15))
     values[4, 12] = 1e200  # an exponent no scene allows, on a vertex of object 7
     with pytest.raises(ValueError, match=r"'objects\[7\]': its materials .* within \+-1e\+100"):
-        _screen_polygons(xyzw, values, np.array([3, 3]), np.array([0, 0, 0, 7, 7, 7]), 4, 4,
-                         "phong")
+        _screen_polygons(
+            xyzw, values, np.array([3, 3]), np.array([0, 0, 0, 7, 7, 7]), 4, 4, "phong"
+        )
 
 
 @pytest.mark.parametrize("visibility", ["zbuffer", "abuffer"])
 def test_issue8_d4_render_never_returns_nan(visibility):
     sphere = builtin_scene("sphere", level=1)
     light = Light("point", position=(0, 0, 1))
-    object.__setattr__(light, "position", (0.0, 0.0, 1e308))  # past the scene limit, as in the issue
+    object.__setattr__(
+        light, "position", (0.0, 0.0, 1e308)
+    )  # past the scene limit, as in the issue
     scene = dataclasses.replace(sphere, lights=(light,))
     for shading in ("flat", "gouraud", "phong", "gooch"):
         assert_clean(render(scene, 16, 16, shading=shading, visibility=visibility))
@@ -319,8 +332,9 @@ SMALL = {"sphere": {"level": 1}, "function_surface": {"n": 3}, "terrain": {"n": 
 FULL = os.environ.get("SCANVIZ_FULL_RENDER_MODES") == "1"
 
 
-@pytest.mark.parametrize("name", ["umbc_zbuffer", "painter", "sphere", "function_surface",
-                                  "transparent_cube", "terrain"])
+@pytest.mark.parametrize(
+    "name", ["umbc_zbuffer", "painter", "sphere", "function_surface", "transparent_cube", "terrain"]
+)
 def test_every_builtin_scene_renders_in_every_mode_at_tiny_sizes(name):
     scene = builtin_scene(name, **({} if FULL else SMALL.get(name, {})))
     # transparent_cube has 567 polygons: its a-buffer runs in 4 of the 16 modes, at 1x1 only.
@@ -331,8 +345,16 @@ def test_every_builtin_scene_renders_in_every_mode_at_tiny_sizes(name):
         sizes = [(1, 1)] if slow and visibility != "zbuffer" else TINY_SIZES
         for size_index, (width, height) in enumerate(sizes):
             cull, edges = VARIANTS[(index + size_index) % len(VARIANTS)]
-            result = render(scene, width, height, shading=shading, visibility=visibility,
-                            perspective_correct=perspective, cull=cull, edges=edges)
+            result = render(
+                scene,
+                width,
+                height,
+                shading=shading,
+                visibility=visibility,
+                perspective_correct=perspective,
+                cull=cull,
+                edges=edges,
+            )
             assert result.image.shape == (height, width, 3)
             assert_clean(result)
 
@@ -340,19 +362,35 @@ def test_every_builtin_scene_renders_in_every_mode_at_tiny_sizes(name):
 def test_every_builtin_scene_is_covered_by_the_tiny_size_test():
     from scanviz.scene import BUILTIN_SCENES
 
-    assert set(BUILTIN_SCENES) == {"umbc_zbuffer", "painter", "sphere", "function_surface",
-                                   "transparent_cube", "terrain"}
+    assert set(BUILTIN_SCENES) == {
+        "umbc_zbuffer",
+        "painter",
+        "sphere",
+        "function_surface",
+        "transparent_cube",
+        "terrain",
+    }
 
 
 def test_hostile_but_valid_geometry_renders_in_every_mode():
     from scanviz.scene import Camera, Mesh, SceneObject
 
     positions = [
-        (0, 0, 0), (1, 1, 0), (2, 2, 0),  # collinear
-        (0.5, 0.5, 0), (0.5, 0.5, 0), (0.7, 0.1, 0),  # a repeated vertex: two distinct corners
-        (-1, -1, 4), (1, -1, 4), (0, 1, 4),  # exactly on the near plane (z = 4 is distance 1)
-        (-1, -1, 6), (1, -1, 6), (0, 1, 3),  # through the eye plane z = 5
-        (0.1, 0.1, -1), (0.1 + 1e-9, 0.1, -1), (0.1, 0.1 + 1e-9, -1),  # far below a sub-sample
+        (0, 0, 0),
+        (1, 1, 0),
+        (2, 2, 0),  # collinear
+        (0.5, 0.5, 0),
+        (0.5, 0.5, 0),
+        (0.7, 0.1, 0),  # a repeated vertex: two distinct corners
+        (-1, -1, 4),
+        (1, -1, 4),
+        (0, 1, 4),  # exactly on the near plane (z = 4 is distance 1)
+        (-1, -1, 6),
+        (1, -1, 6),
+        (0, 1, 3),  # through the eye plane z = 5
+        (0.1, 0.1, -1),
+        (0.1 + 1e-9, 0.1, -1),
+        (0.1, 0.1 + 1e-9, -1),  # far below a sub-sample
     ]
     faces = [[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11], [12, 13, 14]]
     mesh = Mesh(positions, faces, closed=False, smooth=True)
@@ -360,6 +398,13 @@ def test_hostile_but_valid_geometry_renders_in_every_mode():
     for (shading, visibility, perspective), (width, height) in zip(
         MODES, [(5, 4), (1, 1), (3, 2)] * len(MODES), strict=False
     ):
-        result = render(scene, width, height, shading=shading, visibility=visibility,
-                        perspective_correct=perspective, edges=True)
+        result = render(
+            scene,
+            width,
+            height,
+            shading=shading,
+            visibility=visibility,
+            perspective_correct=perspective,
+            edges=True,
+        )
         assert_clean(result)

@@ -21,9 +21,17 @@ def screen_scene(*polygons, material=WHITE):
     objects = []
     for points in polygons:
         positions = [(x, y, -1.0) for x, y in points]
-        objects.append(SceneObject(Mesh(positions, [list(range(len(points)))], closed=False), material))
-    camera = Camera(eye=(0, 0, 0), look_at=(0, 0, -1), window=(0, SIZE, 0, SIZE), near=0.5,
-                    far=2.0, projection="orthographic")
+        objects.append(
+            SceneObject(Mesh(positions, [list(range(len(points)))], closed=False), material)
+        )
+    camera = Camera(
+        eye=(0, 0, 0),
+        look_at=(0, 0, -1),
+        window=(0, SIZE, 0, SIZE),
+        near=0.5,
+        far=2.0,
+        projection="orthographic",
+    )
     return Scene(objects, camera=camera, lights=(), background=(0.0, 0.0, 0.0))
 
 
@@ -38,8 +46,15 @@ def test_single_polygon_coverage_is_its_exact_area():
 
 
 def test_mask_weights_stay_within_the_sub_sample_bound():
-    result = render(screen_scene(TRIANGLE), SIZE, SIZE, shading="flat", visibility="abuffer",
-                    mask="8x8", weights="mask")
+    result = render(
+        screen_scene(TRIANGLE),
+        SIZE,
+        SIZE,
+        shading="flat",
+        visibility="abuffer",
+        mask="8x8",
+        weights="mask",
+    )
     error = np.abs(result.alpha - area_coverage(TRIANGLE, SIZE, SIZE))
     # A straight edge misplaces at most one sub-sample column per sub-row: 1/8 of a pixel per
     # edge crossing it; a pixel holds at most two edges of this triangle.
@@ -75,8 +90,14 @@ def test_one_pixel_can_be_traced_through_insertion_and_packing():
 def test_traced_and_compiled_a_buffer_agree_on_a_3d_scene(shading):
     scene = builtin_scene("transparent_cube")
     compiled = render(scene, 24, 24, shading=shading, visibility="abuffer")
-    traced = render(scene, 24, 24, shading=shading, visibility="abuffer",
-                    trace=Recorder(kinds=["pixel_packed"], region=(10, 10, 12, 12)))
+    traced = render(
+        scene,
+        24,
+        24,
+        shading=shading,
+        visibility="abuffer",
+        trace=Recorder(kinds=["pixel_packed"], region=(10, 10, 12, 12)),
+    )
     np.testing.assert_allclose(traced.image, compiled.image, rtol=0, atol=1e-12)
     np.testing.assert_allclose(traced.alpha, compiled.alpha, rtol=0, atol=1e-12)
 
@@ -104,10 +125,21 @@ def test_fragments_at_needs_an_a_buffer_render():
 
 def issue8_d1_scene():
     """The issue's example: vertex 0 has exponent 0, vertices 1 and 2 exponent 1, on a 4x4 raster."""
-    mesh = Mesh([[0.75, 0.75, 0], [3.5, 0.75, 0], [0.75, 3.5, 0]], [[0, 1, 2]], closed=False,
-                vertex_materials=[0, 1, 1], materials=(Material(exponent=0), Material(exponent=1)))
-    camera = Camera(eye=(0, 0, 5), look_at=(0, 0, 0), window=(0, 4, 0, 4), near=0.1, far=10,
-                    projection="orthographic")
+    mesh = Mesh(
+        [[0.75, 0.75, 0], [3.5, 0.75, 0], [0.75, 3.5, 0]],
+        [[0, 1, 2]],
+        closed=False,
+        vertex_materials=[0, 1, 1],
+        materials=(Material(exponent=0), Material(exponent=1)),
+    )
+    camera = Camera(
+        eye=(0, 0, 5),
+        look_at=(0, 0, 0),
+        window=(0, 4, 0, 4),
+        near=0.1,
+        far=10,
+        projection="orthographic",
+    )
     return Scene([SceneObject(mesh)], camera=camera)
 
 
@@ -126,11 +158,22 @@ def test_issue8_d1_fragment_values_are_the_barycentric_values_at_the_covered_cen
     from scanviz.abuffer import mask_to_grid
     from scanviz.abuffer.fragments import polygon_fragments
 
-    triangle = [(Fraction(3, 4), Fraction(3, 4)), (Fraction(7, 2), Fraction(3, 4)),
-                (Fraction(3, 4), Fraction(7, 2))]
+    triangle = [
+        (Fraction(3, 4), Fraction(3, 4)),
+        (Fraction(7, 2), Fraction(3, 4)),
+        (Fraction(3, 4), Fraction(7, 2)),
+    ]
     values = [[0.0], [1.0], [1.0]]  # the exponents of the issue's example
-    found = polygon_fragments(np.array(triangle, float), np.zeros(3), np.ones(3),
-                              np.array(values), 4, 4, mask="8x8", perspective=False)
+    found = polygon_fragments(
+        np.array(triangle, float),
+        np.zeros(3),
+        np.ones(3),
+        np.array(values),
+        4,
+        4,
+        mask="8x8",
+        perspective=False,
+    )
     (ax, ay), (bx, by), (cx, cy) = triangle
     area = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
     checked = 0
@@ -160,8 +203,9 @@ def test_issue8_d1_fragment_colors_stay_within_the_vertex_colors(xy, colors, w, 
     from scanviz.abuffer.fragments import polygon_fragments
 
     colors = np.array(colors).reshape(3, 3)
-    found = polygon_fragments(np.array(xy), np.zeros(3), 1 / np.array(w), colors, 7, 7,
-                              mask=mask, perspective=perspective)
+    found = polygon_fragments(
+        np.array(xy), np.zeros(3), 1 / np.array(w), colors, 7, 7, mask=mask, perspective=perspective
+    )
     if found is None:
         return
     assert found.values.shape == (len(found.xs), 3)

@@ -25,8 +25,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import signal
-import threading
 import time
 import warnings
 from collections.abc import Callable, Iterator
@@ -36,7 +34,7 @@ import hypothesis
 from hypothesis import HealthCheck, Phase
 from hypothesis import strategies as st
 
-from ..limits import memory_limit
+from ..limits import memory_limit, wall_clock_limit
 from .checks import (
     check_area_coverage,
     check_cli,
@@ -199,7 +197,7 @@ def guarded_call() -> Iterator[None]:
         warnings.catch_warnings(),
         memory_limit(MEMORY_LIMIT),
         _address_space_cap(),
-        _alarm(CALL_SECONDS),
+        wall_clock_limit(CALL_SECONDS, CallTimeout, f"over the {CALL_SECONDS:g} s budget"),
     ):
         warnings.simplefilter("ignore")
         yield
@@ -230,26 +228,6 @@ def _address_space() -> int:
             return int(statm.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
     except (OSError, ValueError):
         return 0
-
-
-@contextlib.contextmanager
-def _alarm(seconds: float) -> Iterator[None]:
-    if threading.current_thread() is not threading.main_thread() or not hasattr(
-        signal, "setitimer"
-    ):
-        yield
-        return
-
-    def expire(signum, frame):
-        raise CallTimeout(f"over the {seconds:g} s budget")
-
-    previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 def classify(name: str, entry: EntryPoint, value: dict) -> tuple[str, str]:

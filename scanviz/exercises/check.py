@@ -11,12 +11,10 @@ from __future__ import annotations
 
 import html
 import inspect
-import signal
-import threading
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from dataclasses import dataclass
 
+from ..limits import wall_clock_limit
 from .catalog import get
 from .core import (
     Case,
@@ -35,25 +33,6 @@ CASE_SECONDS = 20.0  # wall time of one case in the notebook before it is stoppe
 
 class CaseTimeout(BaseException):
     """A case ran longer than `CASE_SECONDS` (a BaseException: the runs' ``except Exception`` lets it by)."""
-
-
-@contextmanager
-def _time_limit(seconds: float) -> Iterator[None]:
-    """Raise `CaseTimeout` inside the running code after `seconds` (main thread only)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def stop(signum, frame):
-        raise CaseTimeout(f"stopped after {seconds:g} s: does a loop never end?")
-
-    previous = signal.signal(signal.SIGALRM, stop)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 @dataclass
@@ -153,7 +132,11 @@ def check_function(
     for item in _cases(exercise, case, practice, seed):
         reference = reference_outcome(exercise, item)
         try:
-            with _time_limit(CASE_SECONDS):
+            with wall_clock_limit(
+                CASE_SECONDS,
+                CaseTimeout,
+                f"stopped after {CASE_SECONDS:g} s: does a loop never end?",
+            ):
                 yours = run_case(exercise, function, item)
         except CaseTimeout as error:
             yours = Outcome(error=f"CaseTimeout: {error}")

@@ -246,7 +246,9 @@ def test_exercise_check_cell_shows_the_diagnostics_and_the_comparison(lab_root, 
         .first
     )
     comparison.scroll_into_view_if_needed()
-    yours = comparison.locator(".widget-html-content", has_text=re.compile(r"^yours \(\d+ events\)")).first
+    yours = comparison.locator(
+        ".widget-html-content", has_text=re.compile(r"^yours \(\d+ events\)")
+    ).first
     before = yours.inner_text()
     comparison.get_by_role("button", name="next difference").click()
     page.wait_for_function(

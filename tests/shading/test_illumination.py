@@ -450,8 +450,9 @@ def test_issue8_d4_a_far_point_light_gives_no_nan(fudge, distance):
 def test_issue8_d4_distances_beyond_float64_attenuate_to_zero_not_nan():
     material = Material(color=WHITE, ambient=0.0, diffuse=1.0, specular=0.0, fudge=1.0)
     light = beyond_scene_limits(Light(kind="point", position=(0, 0, 1)), (0, 0, 1.5e308))
-    lit = illuminate([(0, 0, -1.5e308)], [(0, 0, 1)], rows(material, 1), (0, 0, 1.6e308),
-                     [light], WHITE)  # the distance, 3e308, overflows: f_att = 0
+    lit = illuminate(
+        [(0, 0, -1.5e308)], [(0, 0, 1)], rows(material, 1), (0, 0, 1.6e308), [light], WHITE
+    )  # the distance, 3e308, overflows: f_att = 0
     np.testing.assert_array_equal(lit, [[0.0, 0.0, 0.0]])
     no_fudge = rows(dataclasses.replace(material, fudge=0.0), 1)
     lit = illuminate([(0, 0, -1.5e308)], [(0, 0, 1)], no_fudge, (0, 0, 1.6e308), [light], WHITE)
