@@ -625,7 +625,10 @@ def scan_reference(
         stats.rows_scanned += 1
         stats.swaps += swaps
         stats.max_active = max(stats.max_active, len(aet))
-        row_spans = _row_spans([(i.x, edges[i.edge].winding) for i in aet], rule, width)
+        # An empty AET has no spans: the span rule is not asked (one call per aet_sorted event).
+        row_spans = (
+            _row_spans([(i.x, edges[i.edge].winding) for i in aet], rule, width) if aet else []
+        )
         spans.extend((y, start, end) for start, end, _ in row_spans)
         if len(spans) > most_spans:
             check_memory(

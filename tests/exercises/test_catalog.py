@@ -4,7 +4,7 @@ known-wrong variant caught and named, hidden cases from the secret only."""
 import pytest
 
 from scanviz.exercises import exercises
-from scanviz.exercises.core import hidden_cases, score
+from scanviz.exercises.core import hidden_cases, practice_cases, reference_outcome, score
 
 from .support import grade
 
@@ -43,3 +43,25 @@ def test_hidden_cases_come_from_the_secret_only(exercise):
     assert first == hidden_cases(exercise, "secret one", 6)
     assert first != hidden_cases(exercise, "secret two", 6)
     assert first != hidden_cases(exercise, "secret one", 6, student="ada")
+
+
+STEPS = [e for e in EXERCISES if e.kind == "step"]
+
+
+@pytest.mark.parametrize("exercise", STEPS, ids=lambda e: e.id)
+def test_every_forced_call_is_placed_in_the_algorithms_terms(exercise):
+    # "yours differs at row 5" must name the row (pixel, edge, plane) the call was made for.
+    for case in [*exercise.public, *practice_cases(exercise, 10, seed=2)]:
+        reference = reference_outcome(exercise, case)
+        places = [exercise.place(i, reference.trace) for i in range(len(reference.calls))]
+        assert not [p for p in places if p.startswith("call ")], (case.label, places)
+
+
+def test_span_rule_is_called_once_per_sorted_aet():
+    # _row_of_call maps call k to the k-th aet_sorted event: the loop must not call the
+    # rule on rows without an AET.
+    exercise = next(e for e in EXERCISES if e.id == "span_rule")
+    for case in [*exercise.public, *practice_cases(exercise, 30, seed=4)]:
+        reference = reference_outcome(exercise, case)
+        rows = [e.y for e in reference.trace if e.kind == "aet_sorted"]
+        assert len(rows) == len(reference.calls), case.label
