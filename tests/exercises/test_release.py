@@ -108,3 +108,18 @@ def test_every_case_of_a_step_exercise_calls_the_step(exercise):
 
     for case in [*exercise.public, *practice_cases(exercise, 10, seed=1)]:
         assert reference_outcome(exercise, case).calls, (exercise.id, case.label)
+
+
+def test_released_notebooks_hold_no_hidden_input(tmp_path):
+    import json
+
+    from scanviz.exercises.core import hidden_cases
+    from scanviz.exercises.plain import to_plain
+
+    text = "".join(p.read_text(encoding="utf-8") for p in write_notebooks(tmp_path))
+    for exercise in exercises():
+        for case in hidden_cases(exercise, "a course secret", 8):
+            for value in case.inputs.values():
+                shown = json.dumps(to_plain(value))
+                if len(shown) > 12:  # long enough not to occur by chance
+                    assert shown not in text, (exercise.id, case.label)
