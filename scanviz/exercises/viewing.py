@@ -429,10 +429,13 @@ register(
         stepper=(
             "from scanviz.trace import Recorder\n"
             "from scanviz.transform import clip_polygon\n"
+            "from scanviz.widgets import plot_clip\n\n"
             "recorder = Recorder()\n"
             "clipped, attributes = clip_polygon(CASE['polygon'], CASE['attributes'], "
             "trace=recorder)\n"
-            "recorder.trace()[0], attributes"
+            "print('clipped vertices (x, y, z, w):', clipped.tolist())\n"
+            "print('their attributes:', attributes.tolist())\n"
+            "plot_clip(CASE['polygon'], recorder.trace()[0])"
         ),
         banned=("scanviz.transform.clip", "clip_against_plane", "clip_polygon"),
     )

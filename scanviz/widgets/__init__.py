@@ -1,6 +1,7 @@
 """Views of traces for notebooks. They draw what the core computed; they never compute it."""
 
 from .abuffer import ABufferInspector, FragmentInsertionView
+from .clip import plot_clip
 from .editor import PolygonEditor
 from .lines import LineView, line_stepper
 from .model import StepModel
@@ -25,6 +26,7 @@ __all__ = [
     "figure_widget",
     "interpolation_stepper",
     "line_stepper",
+    "plot_clip",
     "plot_scan",
     "redraw_time",
     "refresh_figure",
