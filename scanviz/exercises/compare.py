@@ -149,7 +149,8 @@ def first_difference(
         for index in range(max(len(yours), len(reference))):
             item_yours = yours[index] if index < len(yours) else MISSING
             item_reference = reference[index] if index < len(reference) else MISSING
-            difference = first_difference(item_yours, item_reference, rtol, f"{path}[{index}]")
+            inner = f"{path}[{index}]{_edge_label(item_reference, index)}"
+            difference = first_difference(item_yours, item_reference, rtol, inner)
             if difference is not None:
                 return difference
         return None
@@ -164,6 +165,15 @@ def first_difference(
     if yours is MISSING or reference is MISSING or type(yours) is not type(reference):
         return Difference(path, yours, reference)
     return None if yours == reference else Difference(path, yours, reference)
+
+
+def _edge_label(item: object, index: int) -> str:
+    """`` (e3)`` for entry `index` of a table sorted otherwise than by edge (the AET), so
+    paths read ``entries[0] (e3).x``; empty where the index is the edge or there is none."""
+    fields = _items(item)
+    edge = fields.get("edge") if fields else None
+    named = isinstance(edge, int) and not isinstance(edge, bool) and edge != index
+    return f" (e{edge})" if named else ""
 
 
 def _sequence(value: object) -> bool:

@@ -258,7 +258,7 @@ class Verdict:
         if self.error is not None and self.trace is None:
             return f"error: {self.error.split(':')[0]}"
         if self.trace is not None:
-            path = "".join(c for c in self.trace.difference.path if not c.isdigit())
+            path = re.sub(r" \(e\d+\)|\d", "", self.trace.difference.path)
             return f"{self.trace.kind}: {path}" if path else self.trace.kind
         if self.first_call is not None:
             return "step output"

@@ -93,3 +93,20 @@ def test_raster_difference_draws_the_scotty3d_legend_y_up():
     assert diff.art() == ".#.\n#?!"
     assert raster_difference(reference, reference) is None
     assert raster_difference(np.zeros((5, 5)), reference).missing == 3  # wrong shape: empty
+
+
+def test_an_aet_entry_is_named_by_its_edge_where_the_order_differs():
+    def entry(edge, x):
+        return AetEntry(
+            edge=edge, x=float(x), x_exact=x, dxdy=0.0, dxdy_exact=Fraction(0), ymax=9.0, winding=1
+        )
+
+    yours = AetSorted(
+        polygon=0, y=2, entries=(entry(2, Fraction(17, 5)), entry(0, Fraction(5))), swaps=1
+    )
+    reference = AetSorted(
+        polygon=0, y=2, entries=(entry(2, Fraction(37, 10)), entry(0, Fraction(5))), swaps=1
+    )
+    difference = first_difference(yours, reference)
+    assert difference.path == "entries[0] (e2).x"
+    assert difference.describe() == "entries[0] (e2).x: yours 3.4, reference 3.7"
