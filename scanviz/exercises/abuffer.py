@@ -634,16 +634,12 @@ def pack_pixel(fragments, full, samples, weights, background):
         rtol=RTOL,
         stepper=(
             "from scanviz.abuffer import Fragments, resolve\n"
-            "from scanviz.widgets import FragmentInsertionView, Stepper\n"
+            "from scanviz.widgets import PackerView, Stepper\n"
             "result = resolve(Fragments.from_rows(CASE['fragments']), CASE['width'], "
             "CASE['height'], layout=CASE['layout'], weights=CASE['weights'], "
             "background=CASE['background'], trace=True)\n"
-            "for event in result.trace.of_kind('pixel_packed'):\n"
-            "    print(f'pixel ({event.x}, {event.y}): color {event.color}, alpha {event.alpha}')\n"
-            "    for step in event.steps:\n"
-            "        print('   ', step)\n"
-            "inserted = result.trace.of_kind('fragment_inserted')\n"
-            "Stepper(inserted, [FragmentInsertionView(inserted, CASE['layout'])]).widget"
+            "packed = result.trace.of_kind('pixel_packed')\n"
+            "Stepper(packed, [PackerView(packed)], title='the packer, pixel by pixel').widget"
         ),
         banned=("scanviz.abuffer.pixelstruct", "pack_pixel"),
     )

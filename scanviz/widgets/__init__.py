@@ -1,6 +1,6 @@
 """Views of traces for notebooks. They draw what the core computed; they never compute it."""
 
-from .abuffer import ABufferInspector, FragmentInsertionView
+from .abuffer import ABufferInspector, FragmentInsertionView, PackerView
 from .clip import plot_clip
 from .editor import PolygonEditor
 from .lines import LineView, line_stepper
@@ -16,6 +16,7 @@ __all__ = [
     "FragmentInsertionView",
     "InterpolationView",
     "LineView",
+    "PackerView",
     "PolygonEditor",
     "ScanConversionView",
     "StepModel",

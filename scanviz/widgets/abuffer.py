@@ -66,6 +66,54 @@ class FragmentInsertionView:
         )
 
 
+def packer_html(event) -> str:
+    """The packer's steps of one ``pixel_packed`` event as an HTML table (None: a note)."""
+    if event is None:
+        return "<i>no pixel_packed event recorded here</i>"
+    rows = [
+        (
+            s.level,
+            s.branch or "\u2013",
+            s.fragment.z,
+            int(popcount(s.region)),
+            s.weight,
+            int(popcount(s.mask_a)),
+            s.a,
+            int(popcount(s.mask_q)),
+            s.q,
+            s.color,
+            swatch(s.color),
+        )
+        for s in event.steps
+    ]
+    return (
+        f"<b>packer</b> ({event.weights} weights): color {swatch(event.color)} "
+        f"{', '.join(f'{c:.4g}' for c in event.color)}, alpha {event.alpha:.4g}"
+        + html_table(PACK_COLUMNS, rows, raw=(10,))
+    )
+
+
+class PackerView:
+    """One ``pixel_packed`` event: the pixel, its color and alpha, and the packer's steps.
+
+    Attributes
+    ----------
+    widget : ipywidgets.HTML
+    """
+
+    def __init__(self, trace: Trace) -> None:
+        self.trace = trace
+        self.widget = widgets.HTML()
+
+    def show(self, step: int) -> None:
+        """Show the pixel packed by event `step` (nothing at step 0)."""
+        if step == 0:
+            self.widget.value = "<i>step forward to pack the pixels one by one</i>"
+            return
+        event = self.trace[step - 1]
+        self.widget.value = f"<b>pixel ({event.x}, {event.y})</b> " + packer_html(event)
+
+
 class ABufferInspector:
     """Pick a pixel of an a-buffer render and see its masks, fragments, packer and insertions.
 
@@ -211,7 +259,7 @@ class ABufferInspector:
             f"<b>pixel ({x}, {y})</b>: {len(fragments)} fragments, nearest first"
             + fragment_table(fragments, self.layout)
         )
-        self.packer.value = self._packer_html(packed[-1] if packed else None)
+        self.packer.value = packer_html(packed[-1] if packed else None)
         self._show_grids(fragments)
         self.insertions = (
             Stepper(inserted, [FragmentInsertionView(inserted, self.layout)]) if inserted else None
@@ -230,29 +278,3 @@ class ABufferInspector:
                 image.set_data(mask_to_grid(fragments[k].mask, self.layout))
                 grid_ax.set_title(f"#{k} z={fragments[k].z:.4g}", fontsize=8)
         refresh_figure(self.grid_figure, self._grid_canvas)
-
-    @staticmethod
-    def _packer_html(event) -> str:
-        if event is None:
-            return "<i>no pixel_packed event recorded here</i>"
-        rows = [
-            (
-                s.level,
-                s.branch or "\u2013",
-                s.fragment.z,
-                int(popcount(s.region)),
-                s.weight,
-                int(popcount(s.mask_a)),
-                s.a,
-                int(popcount(s.mask_q)),
-                s.q,
-                s.color,
-                swatch(s.color),
-            )
-            for s in event.steps
-        ]
-        return (
-            f"<b>packer</b> ({event.weights} weights): color {swatch(event.color)} "
-            f"{', '.join(f'{c:.4g}' for c in event.color)}, alpha {event.alpha:.4g}"
-            + html_table(PACK_COLUMNS, rows, raw=(10,))
-        )
