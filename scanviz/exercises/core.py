@@ -256,7 +256,7 @@ class Verdict:
         if self.passed:
             return ""
         if self.error is not None and self.trace is None:
-            return f"error: {self.error.split(':')[0]}"
+            return f"error: {error_name(self.error)}"
         if self.trace is not None:
             path = re.sub(r" \(e\d+\)|\d", "", self.trace.difference.path)
             return f"{self.trace.kind}: {path}" if path else self.trace.kind
@@ -317,6 +317,15 @@ class Verdict:
         return "\n".join(lines)
 
 
+def error_name(error: str) -> str:
+    """The exception's name in an error text of `run_case` (``TypeError: ... (in f, line 5)``).
+
+    >>> error_name("NotImplementedError (in span_rule, line 4)"), error_name("KeyError: 'x'")
+    ('NotImplementedError', 'KeyError')
+    """
+    return re.match(r"\w*", error).group()
+
+
 def builtin_error_name(error: str) -> str:
     """The exception's name if it is one of Python's own (a student's class name could be
     made from the inputs), else "an exception".
@@ -324,7 +333,7 @@ def builtin_error_name(error: str) -> str:
     >>> builtin_error_name("ValueError: [(9/4, 1)] (in span_rule, line 2)"), builtin_error_name("X_9_4: boom")
     ('ValueError', 'an exception')
     """
-    name = re.match(r"\w*", error).group()
+    name = error_name(error)
     known = getattr(builtins, name, None)
     return name if isinstance(known, type) and issubclass(known, BaseException) else "an exception"
 
@@ -437,7 +446,7 @@ def _with_variant(
 def _error_kind(outcome: Outcome) -> str | None:
     """The exception type a run raised (None if it did not): two runs that both raised at once
     are the same run only if they raised the same kind of error."""
-    return None if outcome.error is None else outcome.error.split(":")[0].split(" (")[0]
+    return None if outcome.error is None else error_name(outcome.error)
 
 
 def _differences(outcome: Outcome, reference: Outcome, rtol: float):

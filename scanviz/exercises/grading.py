@@ -33,6 +33,7 @@ from .core import (
     Exercise,
     Outcome,
     Verdict,
+    builtin_error_name,
     hidden_cases,
     judge,
     reference_outcome,
@@ -125,7 +126,7 @@ def _error_message(verdicts: list[Verdict]) -> str:
     public = next((v for v in raised if not v.hidden), None)
     if public is not None:
         return f"your code raised {public.error} (in {len(raised)} of {len(verdicts)} cases)"
-    kind = raised[0].error.split(":")[0].split(" (")[0] if raised else "an exception"
+    kind = builtin_error_name(raised[0].error) if raised else "an exception"
     return f"your code raised {kind} in {len(raised)} of {len(verdicts)} cases (hidden ones)"
 
 
