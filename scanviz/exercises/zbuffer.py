@@ -14,44 +14,20 @@ import numpy as np
 
 from .. import steps
 from ..pipeline import render
-from ..scene import Camera, Material, Mesh, Scene, SceneObject
+from ..scene import Scene
+from ..scene.builtin import slide_scene
 from ..visibility.zbuffer import depth_test
 from .cases import grid_value, polygon
 from .catalog import register
 from .core import Case, Exercise, Variant, edited_variant
 
-DEPTH_RANGE = 16.0  # the camera's far plane: depths z in [0, 16) are z / 16 in the buffer
 COLORS = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0))
-_MIRROR = np.diag([1.0, 1.0, -1.0, 1.0])  # slide space (z into the screen) -> right-handed world
 
 
 def case_scene(inputs: dict) -> Scene:
     """The scene of a case: its polygons of (x, y, z) as flat colors, seen 1:1 from the front."""
-    width, height = inputs["width"], inputs["height"]
-    objects = tuple(
-        SceneObject(
-            Mesh(
-                np.array(vertices, float),
-                (tuple(range(len(vertices))),),
-                smooth=False,
-                closed=False,
-            ),
-            Material(color=COLORS[k % len(COLORS)], ambient=1.0, diffuse=0.0, specular=0.0),
-            _MIRROR,
-            f"polygon {k}",
-        )
-        for k, vertices in enumerate(inputs["polygons"])
-    )
-    camera = Camera(
-        eye=(0, 0, 0),
-        look_at=(0, 0, -1),
-        up=(0, 1, 0),
-        window=(0, width, 0, height),
-        near=0.0,
-        far=DEPTH_RANGE,
-        projection="orthographic",
-    )
-    return Scene(objects, camera, lights=(), ambient=(1, 1, 1))
+    polygons = [np.array(vertices, float) for vertices in inputs["polygons"]]
+    return slide_scene(polygons, inputs["width"], inputs["height"], colors=COLORS)
 
 
 def _render_with(fn, inputs, tracer):

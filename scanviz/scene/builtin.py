@@ -483,21 +483,28 @@ BUILTIN_MESHES: Mapping[str, Callable[..., Mesh]] = MappingProxyType(
 
 # --- scenes ------------------------------------------------------------------------------
 
-_SLIDE_COLORS = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+SLIDE_COLORS = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+SLIDE_DEPTH = 16.0  # the far plane: slide depths z in [0, 16) are z / 16 in the buffer, exactly
 _SLIDE_MIRROR = np.diag([1.0, 1.0, -1.0, 1.0])  # the slides' left-handed screen space -> world
 
 
-def _slide_scene(name: str, polygons: tuple, width: int, height: int) -> Scene:
-    """Flat-colored polygons in slide coordinates, seen 1:1 by an orthographic camera."""
-    ordinals = ("first", "second", "third")
+def slide_scene(
+    polygons, width: int, height: int, *, colors=SLIDE_COLORS, names=None, name: str = ""
+) -> Scene:
+    """Flat-colored polygons in slide coordinates, seen 1:1 by an orthographic camera.
+
+    Slide coordinates are the UMBC slides': x, y in pixels, z a depth into the
+    screen (smaller = nearer), in [0, `SLIDE_DEPTH`). Polygon k gets
+    ``colors[k % len(colors)]`` and the name ``names[k]`` (default "polygon k").
+    """
     objects = tuple(
         SceneObject(
             Mesh(polygon, (tuple(range(len(polygon))),), smooth=False, closed=False),
-            Material(color=color, ambient=1.0, diffuse=0.0, specular=0.0),
+            Material(color=colors[k % len(colors)], ambient=1.0, diffuse=0.0, specular=0.0),
             _SLIDE_MIRROR,
-            f"{ordinal} polygon",
+            names[k] if names is not None else f"polygon {k}",
         )
-        for polygon, color, ordinal in zip(polygons, _SLIDE_COLORS, ordinals, strict=True)
+        for k, polygon in enumerate(polygons)
     )
     camera = Camera(
         eye=(0, 0, 0),
@@ -505,15 +512,17 @@ def _slide_scene(name: str, polygons: tuple, width: int, height: int) -> Scene:
         up=(0, 1, 0),
         window=(0, width, 0, height),
         near=0.0,
-        far=16.0,
+        far=SLIDE_DEPTH,
         projection="orthographic",
     )
     return Scene(objects, camera, lights=(), ambient=(1, 1, 1), name=name)
 
 
+_ORDINALS = ("first polygon", "second polygon", "third polygon")
+
+
 def _umbc_zbuffer() -> Scene:
-    return _slide_scene(
-        "umbc_zbuffer",
+    return slide_scene(
         (
             ((1, 1, 5), (7, 7, 5), (1, 7, 5)),
             ((3, 5, 9), (10, 5, 9), (10, 9, 9), (3, 9, 9)),
@@ -521,12 +530,13 @@ def _umbc_zbuffer() -> Scene:
         ),
         12,
         12,
+        names=_ORDINALS,
+        name="umbc_zbuffer",
     )
 
 
 def _painter() -> Scene:
-    return _slide_scene(
-        "painter",
+    return slide_scene(
         (
             ((6, 3, 10), (11, 5, 10), (2, 2, 10)),
             ((1, 2, 8), (12, 2, 8), (12, 6, 8), (1, 6, 8)),
@@ -534,6 +544,8 @@ def _painter() -> Scene:
         ),
         16,
         12,
+        names=_ORDINALS,
+        name="painter",
     )
 
 
