@@ -35,20 +35,25 @@ BACKGROUNDS = ((0.0, 0.0, 0.25), (1.0, 1.0, 1.0), (0.25, 0.5, 0.75))
 RTOL = 1e-9
 
 
+def case_resolve(inputs: dict, trace=None):
+    """The a-buffer resolve of a case's fragments (`scanviz.abuffer.resolve`'s result)."""
+    return resolve(
+        Fragments.from_rows(inputs["fragments"]),
+        inputs["width"],
+        inputs["height"],
+        layout=inputs["layout"],
+        weights=inputs["weights"],
+        background=inputs["background"],
+        trace=trace,
+    )
+
+
 def _resolve_with(step: str):
     """``call`` of an exercise on `step`: resolve the case's fragments with `fn` as that step."""
 
     def call(fn, inputs, tracer):
         with steps.using(**{step: fn}):
-            return resolve(
-                Fragments.from_rows(inputs["fragments"]),
-                inputs["width"],
-                inputs["height"],
-                layout=inputs["layout"],
-                weights=inputs["weights"],
-                background=inputs["background"],
-                trace=tracer,
-            )
+            return case_resolve(inputs, tracer)
 
     return call
 
@@ -437,11 +442,9 @@ def insert_fragment(fragments, incoming, full):
         result=_packed,
         rtol=RTOL,
         stepper=(
-            "from scanviz.abuffer import Fragments, resolve\n"
+            "from scanviz.exercises.abuffer import case_resolve\n"
             "from scanviz.widgets import FragmentInsertionView, Stepper\n"
-            "result = resolve(Fragments.from_rows(CASE['fragments']), CASE['width'], "
-            "CASE['height'], layout=CASE['layout'], weights=CASE['weights'], "
-            "background=CASE['background'], trace=True)\n"
+            "result = case_resolve(CASE, trace=True)\n"
             "inserted = result.trace.of_kind('fragment_inserted')\n"
             "Stepper(inserted, [FragmentInsertionView(inserted, CASE['layout'])]).widget"
         ),
@@ -633,11 +636,9 @@ def pack_pixel(fragments, full, samples, weights, background):
         result=_packed,
         rtol=RTOL,
         stepper=(
-            "from scanviz.abuffer import Fragments, resolve\n"
+            "from scanviz.exercises.abuffer import case_resolve\n"
             "from scanviz.widgets import PackerView, Stepper\n"
-            "result = resolve(Fragments.from_rows(CASE['fragments']), CASE['width'], "
-            "CASE['height'], layout=CASE['layout'], weights=CASE['weights'], "
-            "background=CASE['background'], trace=True)\n"
+            "result = case_resolve(CASE, trace=True)\n"
             "packed = result.trace.of_kind('pixel_packed')\n"
             "Stepper(packed, [PackerView(packed)], title='the packer, pixel by pixel').widget"
         ),

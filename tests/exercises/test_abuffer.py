@@ -3,7 +3,7 @@
 import pytest
 
 from scanviz import steps
-from scanviz.abuffer import Fragments, resolve
+from scanviz.exercises.abuffer import case_resolve
 from scanviz.exercises.catalog import get
 from scanviz.exercises.core import (
     compile_answer,
@@ -18,16 +18,7 @@ EXERCISES = ("abuffer_insert", "pixel_pack")
 
 def traced(exercise, inputs, **replaced):
     with steps.using(**replaced):
-        result = resolve(
-            Fragments.from_rows(inputs["fragments"]),
-            inputs["width"],
-            inputs["height"],
-            layout=inputs["layout"],
-            weights=inputs["weights"],
-            background=inputs["background"],
-            trace=Recorder(),
-        )
-    return list(result.trace)
+        return list(case_resolve(inputs, Recorder()).trace)
 
 
 @pytest.mark.parametrize("exercise_id", EXERCISES)

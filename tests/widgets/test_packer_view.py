@@ -1,21 +1,12 @@
 """The packer view steps through pixel_packed events, one pixel per step."""
 
-from scanviz.abuffer import Fragments, resolve
 from scanviz.exercises import public_inputs
+from scanviz.exercises.abuffer import case_resolve
 from scanviz.widgets import PackerView, Stepper
 
 
 def test_packer_view_shows_each_packed_pixel_and_its_steps():
-    case = public_inputs("pixel_pack")
-    result = resolve(
-        Fragments.from_rows(case["fragments"]),
-        case["width"],
-        case["height"],
-        layout=case["layout"],
-        weights=case["weights"],
-        background=case["background"],
-        trace=True,
-    )
+    result = case_resolve(public_inputs("pixel_pack"), trace=True)
     packed = result.trace.of_kind("pixel_packed")
     view = PackerView(packed)
     stepper = Stepper(packed, [view])
