@@ -30,7 +30,6 @@ RTOL = 1e-9  # float steps: see the module docstring
 
 CUBE = [[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]
 CUBE_FACES = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
-CUBE_SIDES = ("-x", "+x", "-y", "+y", "-z", "+z")
 
 
 def _variant(solution: str, name: str, hint: str, old: str, new: str) -> Variant:
