@@ -164,7 +164,7 @@ def test_bad_arguments_name_the_rule():
     with pytest.raises(ValueError, match="'shading' must be one of"):
         render(scene, 8, 8, shading="toon")
     with pytest.raises(ValueError, match="'visibility' must be one of"):
-        render(scene, 8, 8, visibility="painter")
+        render(scene, 8, 8, visibility="sorted")
     with pytest.raises(TypeError, match="'scene' must be a scanviz.scene.Scene"):
         render("builtin:sphere", 8, 8)
 
@@ -260,7 +260,7 @@ def test_issue8_d3_scenes_at_the_scene_limits_render(shading, visibility, perspe
 
 
 def test_issue8_d3_an_internal_bound_names_the_object_and_the_rule():
-    from scanviz.pipeline import _screen_polygons
+    from scanviz.pipeline.prepare import _screen_polygons
 
     xyzw = np.array([[0.0, 0, 0.5, 1], [0.5, 0, 0.5, 1], [0, 0.5, 0.5, 1]] * 2)
     values = np.zeros((6, 15))
@@ -302,7 +302,7 @@ def test_issue8_d12_plan_estimates_the_work_and_large_renders_show_progress(monk
     bound = result.stats.fragments_estimated
     assert result.stats.fragments <= bound <= 20 * 20 * result.stats.polygons_drawn
     assert f"at most {bound} fragments" in str(result.plan)
-    monkeypatch.setattr(scanviz.pipeline, "PROGRESS_POLYGONS", 10)
+    monkeypatch.setattr(scanviz.pipeline.antialiased, "PROGRESS_POLYGONS", 10)
     render(scene, 20, 20, visibility="abuffer")
     assert "abuffer polygons" in capsys.readouterr().err
 

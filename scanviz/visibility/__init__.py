@@ -1,5 +1,34 @@
-"""Visibility: the z-buffer (traced reference and compiled twin)."""
+"""Visibility: the z-buffer, and the classic algorithms behind one interface.
 
+`solve(name, polygons, width, height)` runs any of `ALGORITHMS` on screen
+polygons; `render(scene, w, h, visibility=name)` runs it in the pipeline.
+The list-priority algorithms (painter's, depth sort, BSP) decide an order
+of pieces to paint; the image-space ones (scanline, Warnock) the visible
+polygon per sample; all paint with the z-buffer's scan conversion
+(`scanviz.visibility.paint`), so where they decide as the z-buffer does,
+the pixels are the z-buffer's to the bit.
+"""
+
+from .interface import ALGORITHMS, Decision, Visibility, VisibilityResult, ZBuffer, algorithm, solve
+from .painter import Painter
+from .surfaces import PLANE_TOLERANCE, Cut, Piece, Surfaces
 from .zbuffer import ScreenPolygons, ZBufferResult, ZBufferStats, zbuffer
 
-__all__ = ["ScreenPolygons", "ZBufferResult", "ZBufferStats", "zbuffer"]
+__all__ = [
+    "ALGORITHMS",
+    "PLANE_TOLERANCE",
+    "Cut",
+    "Decision",
+    "Painter",
+    "Piece",
+    "ScreenPolygons",
+    "Surfaces",
+    "Visibility",
+    "VisibilityResult",
+    "ZBuffer",
+    "ZBufferResult",
+    "ZBufferStats",
+    "algorithm",
+    "solve",
+    "zbuffer",
+]

@@ -52,6 +52,10 @@ perspective_divide = njit(cache=True, inline="always")(formulas.perspective_divi
 # Fields of the stats array returned by `zbuffer_polygons`.
 ROWS, SPANS, FRAGMENTS, PASSED, FAILED, DRAWN, SKIPPED = range(7)
 STAT_FIELDS = 7
+# The per-sample test of `draw_span`: the z-buffer's, paint over (back to front), paint
+# under (front to back: only empty samples), or write where the decided id is this polygon.
+DEPTH, OVER, UNDER, TARGET = range(4)
+NO_CUTS = np.zeros((0, 11))
 
 
 @njit(cache=True, inline="always")
@@ -113,13 +117,43 @@ def start_edge(table, e, channels, scale, y, edge_value, edge_dvdy):
 
 
 @njit(cache=True, inline="always")
-def draw_span(polygon, y, start, end, z, dzdx, span_value, span_dvdx, depth, ids, values, stats):
-    """depth_test each sample of [start, end): store depth, id and values where z < stored."""
+def keeps(cuts, x, y):
+    """Whether sample (x, y) is on the kept side of every cut of a piece (`scanviz.visibility.surfaces`).
+
+    A cut row is the piece's plane, the cutting polygon's plane (five numbers
+    each, as `plane_depth` takes them) and 1.0 to keep the samples behind that
+    plane (depth difference > 0), 0.0 to keep the others.
+    """
+    for i in range(cuts.shape[0]):
+        own = plane_depth(cuts[i, 0], cuts[i, 1], cuts[i, 2], cuts[i, 3], cuts[i, 4], x, y)
+        other = plane_depth(cuts[i, 5], cuts[i, 6], cuts[i, 7], cuts[i, 8], cuts[i, 9], x, y)
+        if (own - other > 0.0) != (cuts[i, 10] == 1.0):
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def writes(mode, z, depth, ids, target, polygon, cuts, x, y):
+    """The per-sample test of each mode: depth test, paint over, paint under, or the decided id."""
+    if mode == DEPTH:
+        write = z < depth[y, x]
+    elif mode == OVER:
+        write = True
+    elif mode == UNDER:
+        write = ids[y, x] < 0
+    else:
+        write = target[y, x] == polygon
+    return write and (cuts.shape[0] == 0 or keeps(cuts, x, y))
+
+
+@njit(cache=True, inline="always")
+def draw_span(polygon, y, start, end, z, dzdx, span_value, span_dvdx, depth, ids, values, stats, mode, cuts, target):  # fmt: skip
+    """depth_test (or the mode's test) each sample of [start, end): store depth, id and values."""
     value_count = values.shape[2]
     perspective = span_value.shape[0] > value_count  # the last channel is 1/w
     z_carry, passed = 0.0, 0
     for x in range(start, end):
-        if z < depth[y, x]:
+        if writes(mode, z, depth, ids, target, polygon, cuts, x, y):
             depth[y, x] = z
             ids[y, x] = polygon
             for k in range(value_count):
@@ -166,12 +200,14 @@ def start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx):
 
 @njit(cache=True)
 def draw_polygon(
-    polygon, units, offsets, scale, plane, channels, buffers, depth, ids, values, stats
-):
+    polygon, units, offsets, scale, plane, channels, buffers, depth, ids, values, stats, mode, cuts,
+    target,
+):  # fmt: skip
     """Scan polygon `polygon` (rows offsets[0]:offsets[1] of `units`) into the buffers.
 
     `plane` is (x_first, y_first, z_first, dzdx, dzdy); `buffers` the scratch
-    arrays (aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx).
+    arrays (aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx);
+    `mode`, `cuts` and `target` choose the per-sample test (`writes`).
     """
     height, width = depth.shape
     x_first, y_first, z_first, dzdx, dzdy = plane
@@ -205,7 +241,7 @@ def draw_polygon(
             if winding != 0 and start < end:
                 start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx)
                 z = z_row + dzdx * start
-                draw_span(polygon, y, start, end, z, dzdx, span_value, span_dvdx, depth, ids, values, stats)  # fmt: skip
+                draw_span(polygon, y, start, end, z, dzdx, span_value, span_dvdx, depth, ids, values, stats, mode, cuts, target)  # fmt: skip
                 stats[SPANS] += 1
         y += 1
 
@@ -221,6 +257,28 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     Returns (depth, ids, values, stats): (H, W) float64, +inf where empty;
     (H, W) int64, -1 where empty; (H, W, value_count) float64; the (7,)
     int64 counts ROWS, SPANS, FRAGMENTS, PASSED, FAILED, DRAWN, SKIPPED.
+    """
+    order = np.arange(offsets.shape[0] - 1)
+    no_cuts = np.zeros(order.shape[0] + 1, np.int64)
+    target = np.zeros((1, 1), np.int64)
+    return paint_pieces(
+        units, positions, z, channels, offsets, scale, width, height, value_count,
+        order, no_cuts, NO_CUTS, DEPTH, target,
+    )  # fmt: skip
+
+
+@njit(cache=True)
+def paint_pieces(
+    units, positions, z, channels, offsets, scale, width, height, value_count,
+    piece_polygon, cut_starts, cut_rows, mode, target,
+):  # fmt: skip
+    """Draw pieces i = 0, 1, ... of polygons piece_polygon[i] with the per-sample test `mode`.
+
+    Piece i keeps the samples of its polygon on the kept side of its cuts,
+    rows cut_starts[i]:cut_starts[i + 1] of `cut_rows` (see `keeps`);
+    `target` (H, W) is the decided polygon per sample for mode TARGET. The
+    other arguments and the result are those of `zbuffer_polygons`; DRAWN
+    and SKIPPED count pieces.
     """
     depth = np.full((height, width), np.inf)
     ids = np.full((height, width), -1, np.int64)
@@ -239,7 +297,8 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
         np.empty(channel_count),
         np.empty(channel_count),
     )
-    for p in range(offsets.shape[0] - 1):
+    for i in range(piece_polygon.shape[0]):
+        p = piece_polygon[i]
         first, stop = offsets[p], offsets[p + 1]
         _, _, c, dzdx, dzdy, z_first = depth_plane(
             positions[first:stop, 0], positions[first:stop, 1], z[first:stop]
@@ -252,8 +311,10 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
             continue
         fragments = stats[FRAGMENTS]
         plane = (positions[first, 0], positions[first, 1], z_first, dzdx, dzdy)
+        cuts = cut_rows[cut_starts[i] : cut_starts[i + 1]]
         draw_polygon(
-            p, units, offsets[p : p + 2], scale, plane, channels, buffers, depth, ids, values, stats
-        )
+            p, units, offsets[p : p + 2], scale, plane, channels, buffers, depth, ids, values,
+            stats, mode, cuts, target,
+        )  # fmt: skip
         stats[DRAWN] += stats[FRAGMENTS] > fragments
     return depth, ids, values, stats

@@ -1,0 +1,253 @@
+"""The scene made ready for visibility: cull, transform, clip, per-corner attributes, screen polygons."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..conventions import COORD_LIMIT
+from ..scene.faces import FaceCorners, face_corners
+from ..scene.model import Scene
+from ..shading import face_normals, material_array, vertex_normals
+from ..transform import classify, clip_from_eye, clip_polygon, cull_faces, eye_from_world
+from ..vectors import unit_vectors
+from ..visibility import ScreenPolygons
+from ..visibility.zbuffer import VALUE_LIMIT
+from .result import RenderStats, Stage
+from .shade import _lit
+
+TRANSPARENCY = 7  # column of `transparency` in a material row (scanviz.shading.MATERIAL_FIELDS)
+# Per-vertex attributes each shading model interpolates.
+ATTRIBUTES = {
+    "flat": 0,
+    "gouraud": 3,
+    "phong": 15,
+    "gooch": 15,
+}  # phong: normal, position, material
+# What each attribute column is, for messages: (first column, last column + 1, scene field).
+ATTRIBUTE_FIELDS = {
+    "gouraud": ((0, 3, "lit vertex colors"),),
+    "phong": ((0, 3, "normals"), (3, 6, "positions"), (6, 15, "materials")),
+    "gooch": ((0, 3, "normals"), (3, 6, "positions"), (6, 15, "materials")),
+}
+
+
+@dataclass
+class _Prepared:
+    """The scene after culling, transformation and clipping: what the z-buffer draws."""
+
+    polygons: ScreenPolygons
+    flat_colors: np.ndarray  # (P, 3) for flat shading, else (P, 0)
+    polygon_object: np.ndarray  # (P,) index of the scene object each polygon came from
+    polygon_opacity: np.ndarray  # (P,) 1 - transparency of its polygon-level material
+    stats: RenderStats
+    stages: list[Stage]
+
+
+@dataclass(frozen=True)
+class _ObjectInWorld:
+    """One object's faces in world space, with per-corner normals and material rows."""
+
+    world: np.ndarray  # (V, 3) positions
+    faces: tuple[np.ndarray, ...]  # counter-clockwise in world space
+    flat_faces: FaceCorners  # the same faces flattened once, for every stage
+    sizes: np.ndarray  # (F,) vertices per face
+    corners: np.ndarray  # (sum sizes,) vertex index of each face corner
+    face_normals: np.ndarray  # (F, 3) unit
+    corner_normals: np.ndarray  # (sum sizes, 3) unit
+    palette: np.ndarray  # (1 + materials, 9): row 0 is the object's material
+    face_material: np.ndarray  # (F,) palette row: polygon level
+    corner_material: np.ndarray  # (sum sizes,) palette row: vertex level, inherited
+
+
+def _object_in_world(obj) -> _ObjectInWorld:
+    mesh, matrix = obj.mesh, obj.world_from_model
+    world = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
+    # A mirroring transform turns counter-clockwise faces clockwise: reverse them back.
+    mirrored = np.linalg.slogdet(matrix[:3, :3])[0] < 0  # the sign alone: det may overflow
+    faces = tuple(f[::-1] for f in mesh.faces) if mirrored else mesh.faces
+    flat_faces = face_corners(faces, len(world))
+    corners, face_of_corner = flat_faces.corner, flat_faces.face
+    sizes = np.diff(np.append(flat_faces.starts, len(corners)))
+    faces_n = face_normals(world, flat_faces)
+    if mesh.normals is not None:
+        # Normals take the inverse transpose; unit first, so no product overflows.
+        normals = unit_vectors(unit_vectors(mesh.normals) @ np.linalg.inv(matrix[:3, :3]))
+        corner_normals = normals[corners]
+    elif mesh.smooth:
+        corner_normals = vertex_normals(world, flat_faces)[corners]
+    else:
+        corner_normals = faces_n[face_of_corner]
+    face_material = np.zeros(len(sizes), np.int64)
+    if mesh.face_materials is not None:
+        face_material = np.where(mesh.face_materials >= 0, mesh.face_materials + 1, 0)
+    corner_material = face_material[face_of_corner]
+    if mesh.vertex_materials is not None:
+        own = mesh.vertex_materials[corners]
+        corner_material = np.where(own >= 0, own + 1, corner_material)
+    palette = material_array((obj.material, *mesh.materials))
+    return _ObjectInWorld(
+        world,
+        faces,
+        flat_faces,
+        sizes,
+        corners,
+        faces_n,
+        corner_normals,
+        palette,
+        face_material,
+        corner_material,
+    )
+
+
+def prepare(
+    scene: Scene,
+    width: int,
+    height: int,
+    *,
+    shading: str,
+    cull: bool | None,
+    tracer=None,
+    transparent_visible: bool = False,
+) -> _Prepared:
+    """Cull, transform and clip every object; return the screen polygons the z-buffer draws."""
+    clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
+    stats = RenderStats(objects=len(scene.objects))
+    rows = {"xyzw": [], "values": [], "sizes": [], "flat": [], "object": [], "opacity": []}
+    cull_ran = False
+    for index, obj in enumerate(scene.objects):
+        o = _object_in_world(obj)
+        world, faces, sizes, corners = o.world, o.faces, o.sizes, o.corners
+        stats.polygons_in += len(faces)
+        if tracer is not None:
+            from ..transform import transform_vertices
+
+            transform_vertices(scene.camera, world, width, height, trace=tracer, object=index)
+        clip = np.hstack([world, np.ones((len(world), 1))]) @ clip_from_world.T
+        unfit = ~np.isfinite(clip).all(axis=1)
+        _check_vertices("positions (clip space)", unfit, np.full(len(clip), index), "finite")
+        keep = np.ones(len(faces), bool)
+        # Back faces of a transparent object show through it where the visibility can show them.
+        see_through = transparent_visible and not obj.material.opaque
+        if (obj.mesh.closed and not see_through) if cull is None else cull:
+            cull_ran = True
+            culled, _ = cull_faces(scene.camera, world, o.flat_faces, trace=tracer)
+            keep &= ~culled
+            stats.culled += int(culled.sum())
+        verdict = classify(clip, o.flat_faces).astype(object)
+        verdict[~keep] = "culled"
+        stats.off_screen += int((verdict == "reject").sum())
+        stats.accepted += int((verdict == "accept").sum())
+        # Attributes per corner, by shading model.
+        if shading == "gouraud":
+            values = _lit(scene, world[corners], o.corner_normals, o.palette[o.corner_material])
+            stats.shaded_vertices += len(values)
+        elif shading in ("phong", "gooch"):
+            values = np.hstack([o.corner_normals, world[corners], o.palette[o.corner_material]])
+        else:
+            values = np.zeros((len(corners), 0))
+        flat = np.zeros((len(faces), 3 if shading == "flat" else 0))
+        if shading == "flat" and len(faces):
+            starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+            centroids = np.add.reduceat(world[corners], starts) / sizes[:, None]
+            flat = _lit(scene, centroids, o.face_normals, o.palette[o.face_material])
+        corner_keep = np.repeat(verdict == "accept", sizes)
+        rows["xyzw"].append(clip[corners][corner_keep])
+        rows["values"].append(values[corner_keep])
+        rows["sizes"].append(sizes[verdict == "accept"])
+        rows["flat"].append(flat[verdict == "accept"])
+        opacity = 1.0 - o.palette[o.face_material, TRANSPARENCY]
+        rows["object"].append(np.full(int((verdict == "accept").sum()), index))
+        rows["opacity"].append(opacity[verdict == "accept"])
+        starts = np.concatenate([[0], np.cumsum(sizes)])
+        for f in np.flatnonzero(verdict == "clip"):  # drawn after the accepted faces of this object
+            points, attributes = clip_polygon(
+                clip[faces[f]], values[starts[f] : starts[f + 1]], trace=tracer, polygon=int(f)
+            )
+            stats.clipped += 1
+            if len(points) >= 3:
+                rows["xyzw"].append(points)
+                rows["values"].append(attributes)
+                rows["sizes"].append(np.array([len(points)]))
+                rows["flat"].append(flat[f : f + 1])
+                rows["object"].append(np.array([index]))
+                rows["opacity"].append(opacity[f : f + 1])
+            else:
+                stats.off_screen += 1
+    xyzw = np.concatenate(rows["xyzw"]) if rows["xyzw"] else np.zeros((0, 4))
+    sizes = (
+        np.concatenate(rows["sizes"]).astype(np.int64) if rows["sizes"] else np.zeros(0, np.int64)
+    )
+    k = ATTRIBUTES[shading]
+    values = np.concatenate(rows["values"]) if rows["values"] else np.zeros((0, k))
+    flat_colors = (
+        np.concatenate(rows["flat"]) if rows["flat"] else np.zeros((0, 3 if k == 0 else 0))
+    )
+    polygon_object = (
+        np.concatenate(rows["object"]).astype(np.int64) if rows["object"] else np.zeros(0, np.int64)
+    )
+    vertex_object = np.repeat(polygon_object, sizes)
+    screen = _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading)
+    stats.polygons_drawn = len(sizes)
+    stages = [
+        Stage(
+            "cull",
+            cull_ran,
+            "closed meshes: back faces removed"
+            if cull_ran
+            else ("cull=False" if cull is False else "no closed mesh: every face may be seen"),
+        ),
+        Stage(
+            "clip",
+            stats.clipped > 0,
+            f"{stats.clipped} polygons straddle the view volume"
+            if stats.clipped
+            else "every polygon trivially accepted or rejected",
+        ),
+    ]
+    polygon_opacity = np.concatenate(rows["opacity"]) if rows["opacity"] else np.zeros(0)
+    return _Prepared(screen, flat_colors, polygon_object, polygon_opacity, stats, stages)
+
+
+def _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading) -> ScreenPolygons:
+    """Clipped polygons divided by w into display coordinates, checked against the z-buffer's bounds.
+
+    The scene limits (`scanviz.scene.model`) keep every value within them;
+    should one ever be out, the error names the object and the field it came
+    from, not an internal array.
+    """
+    w = xyzw[:, 3]
+    with np.errstate(all="ignore"):
+        xy = np.column_stack([(xyzw[:, 0] / w + 1) / 2 * width, (xyzw[:, 1] / w + 1) / 2 * height])
+        z, inv_w = xyzw[:, 2] / w, 1 / w
+    checks = [
+        ("positions (display x, y)", xy, COORD_LIMIT, f"within +-{COORD_LIMIT} pixels"),
+        ("positions (depth z)", z[:, None], VALUE_LIMIT, f"within +-{VALUE_LIMIT:g}"),
+        *(
+            (field, values[:, first:stop], VALUE_LIMIT, f"within +-{VALUE_LIMIT:g}")
+            for first, stop, field in ATTRIBUTE_FIELDS.get(shading, ())
+        ),
+    ]
+    for what, array, limit, rule in checks:
+        _check_vertices(what, ~(np.abs(array) <= limit).all(axis=1), vertex_object, rule)
+    far = ~((inv_w >= 1 / VALUE_LIMIT) & (inv_w <= VALUE_LIMIT))
+    _check_vertices(
+        "positions (1/w)", far, vertex_object, f"in [{1 / VALUE_LIMIT:g}, {VALUE_LIMIT:g}]"
+    )
+    return ScreenPolygons(
+        xy=xy,
+        z=z,
+        inv_w=inv_w,
+        values=values,
+        offsets=np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64),
+    )
+
+
+def _check_vertices(what: str, broken: np.ndarray, vertex_object: np.ndarray, rule: str) -> None:
+    if broken.any():
+        obj = int(vertex_object[np.flatnonzero(broken)[0]])
+        raise ValueError(
+            f"'objects[{obj}]': its {what} after the viewing transform must be {rule} (the scene "
+            "limits of scanviz.scene.model keep them there: the camera or the object is beyond them)"
+        )

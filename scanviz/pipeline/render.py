@@ -1,0 +1,304 @@
+"""`render`: plan the work, prepare the scene, decide visibility, shade, draw edges.
+
+`render` plans the work first (which stages can change the image, which can
+be skipped and why), then runs each stage as a plain function over arrays.
+With a tracer every stage records its events; without one the compiled
+kernels run and nothing is recorded.
+
+Shading is deferred: the opaque visibility algorithms keep, per pixel, the
+interpolated attributes of the visible fragment, and the shading model runs
+once per visible pixel (Phong, Gooch) or per vertex before rasterization
+(Gouraud) or per polygon (flat). For opaque surfaces this gives the image a
+forward renderer gives, without shading fragments that are later hidden.
+The opaque algorithms are chosen by name from `scanviz.visibility.ALGORITHMS`
+(`solve` dispatches); the a-buffer path is `scanviz.pipeline.antialiased`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import steps
+from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
+from ..limits import check_memory
+from ..raster.api import as_tracer
+from ..scene.model import Scene
+from ..trace import Recorder
+from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
+from .antialiased import _antialiased
+from .edges import _draw_feature_edges
+from .prepare import ATTRIBUTES, prepare
+from .result import RenderPlan, RenderResult, Stage
+from .shade import _shade_pixels, _trace_illumination
+
+SHADINGS = ("flat", "gouraud", "phong", "gooch")
+ANTIALIASED = ("abuffer", "flawed")
+VISIBILITIES = (*ALGORITHMS, *ANTIALIASED)  # the opaque algorithms, then the a-buffer's two
+# Bytes per pixel of the buffers a render holds at once (image, depth, ids, their copies), plus
+# 8 per attribute per pixel, plus the shading temporaries of per-pixel shading.
+PIXEL_BYTES = {"opaque": 8 * 8, "abuffer": 8 * 16, "flawed": 8 * 16}
+SHADING_BYTES = 8 * 64  # per pixel or fragment shaded by Phong/Gooch: vectors of every light term
+
+
+def render(
+    scene: Scene,
+    width: int,
+    height: int,
+    *,
+    shading: str = "phong",
+    visibility: str | Visibility = "zbuffer",
+    sample: str = "corner",
+    subpixel_bits: int | None = 8,
+    perspective_correct: bool = True,
+    cull: bool | None = None,
+    edges: bool = False,
+    mask: str = "8x8",
+    weights: str = "area",
+    trace: object = None,
+) -> RenderResult:
+    """Render a scene through the classic pipeline.
+
+    Parameters
+    ----------
+    scene : Scene
+        See `scanviz.scene` and `scanviz.io.load_scene` ("builtin:sphere", a JSON file, ...).
+    width, height : int
+        Raster size.
+    shading : {"flat", "gouraud", "phong", "gooch"}
+        Flat: one color per polygon. Gouraud: lit at vertices, colors
+        interpolated. Phong: normals interpolated, lit per pixel. Gooch: tone
+        shading per pixel.
+    visibility : {"zbuffer", "painter", "depth_sort", "bsp", "scanline", "warnock", "abuffer", "flawed"}
+        The z-buffer (one sample per pixel); the classic opaque algorithms of
+        `scanviz.visibility` (a name, or an instance such as
+        ``BSP(root="fewest_splits")`` for its options), each painted with the
+        z-buffer's scan conversion and shaded the same way; Carpenter's
+        a-buffer (pixel masks, exact areas, fragment lists and the packer:
+        anti-aliased, with transparency); or the flawed coverage-blending
+        z-buffer of the thesis §6.3, for comparison (it leaves seams between
+        adjacent polygons).
+    mask : {"4x4", "8x4", "8x8"}
+        Sub-samples per pixel of the a-buffer's pixel masks.
+    weights : {"area", "mask"}
+        The packer weighs fragments by exact area or by mask bits.
+    sample, subpixel_bits
+        As in `scanviz.scan_convert`.
+    perspective_correct : bool
+        Interpolate attributes with 1/w (default) or affinely in screen space.
+    cull : bool or None
+        Back-face culling; None culls closed meshes only.
+    edges : bool
+        Draw silhouette, boundary and crease (> 30 degrees) edges in black over
+        the image with the midpoint line algorithm, where they are not hidden.
+    trace : None, True, or Tracer
+        None runs the compiled kernels; a tracer runs the traced references.
+
+    Returns
+    -------
+    RenderResult
+        Image, depth and alpha never hold NaN.
+
+    Raises
+    ------
+    scanviz.limits.ResourceLimitError
+        If the render's buffers (per pixel; for the a-buffer, its fragments as
+        they are made) would go over the memory limit (`scanviz.limits`).
+    ValueError, TypeError
+        On a bad argument, naming it and the rule.
+
+    Notes
+    -----
+    An a-buffer render of more than `PROGRESS_POLYGONS` polygons shows a
+    progress bar (tqdm); Ctrl-C or a kernel interrupt stops it between
+    polygons with KeyboardInterrupt, returning nothing. The plan's a-buffer
+    line bounds the work: at most the sum of the polygons' bounding boxes in
+    fragments (`RenderStats.fragments_estimated`).
+    """
+    width, height = check_raster_size(width, height)
+    check_choice("shading", shading, SHADINGS)
+    if isinstance(visibility, str):
+        check_choice("visibility", visibility, VISIBILITIES)
+    chosen = None if visibility in ANTIALIASED else algorithm(visibility)
+    name = visibility if chosen is None else chosen.name
+    check_choice("sample", sample, SAMPLE_MODES)
+    check_subpixel_bits(subpixel_bits)
+    check_choice("mask", mask, ("4x4", "8x4", "8x8"))
+    check_choice("weights", weights, ("area", "mask"))
+    if not isinstance(scene, Scene):
+        raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
+    tracer = as_tracer(trace)
+    _check_render_memory(width, height, name, ATTRIBUTES[shading], shading)
+    prepared = prepare(
+        scene,
+        width,
+        height,
+        shading=shading,
+        cull=cull,
+        tracer=tracer,
+        transparent_visible=name == "abuffer",
+    )
+    stats = prepared.stats
+    stats.fragments_estimated = _fragment_bound(prepared.polygons, width, height)
+    options = {"subpixel_bits": subpixel_bits, "perspective": perspective_correct, "tracer": tracer}
+    solved = alpha = abuffer = None
+    if chosen is not None:
+        image, solved = _opaque(scene, prepared, chosen, width, height, shading, sample, **options)
+        depth, polygon = solved.depth, solved.polygon
+    else:
+        image, depth, polygon, abuffer = _antialiased(
+            scene, prepared, width, height, shading, name, mask, weights, **options
+        )
+        alpha = abuffer.alpha
+    _check_no_nan(name, image=image, depth=depth, alpha=alpha)
+    if edges:
+        stats.edge_pixels = _draw_feature_edges(scene, image, depth, width, height)
+    plan = _plan(scene, prepared, shading, name, edges, tracer)
+    recorded = tracer.trace() if isinstance(tracer, Recorder) else None
+    # Float bounds: with int bounds numpy takes a casting path ~20x slower on a 1024² image.
+    np.clip(image, 0.0, 1.0, out=image)
+    return RenderResult(image, depth, polygon, stats, plan, recorded, alpha, abuffer, solved)
+
+
+def _check_render_memory(width, height, visibility, attributes, shading) -> None:
+    """Refuse a render whose per-pixel buffers alone are over the memory limit, before any is made.
+
+    The z-buffer holds every attribute per pixel and shades pixels; the
+    a-buffer's per-fragment storage is checked as it grows (`_polygon_fragments`).
+    """
+    per_pixel = PIXEL_BYTES.get(visibility, PIXEL_BYTES["opaque"])
+    if visibility not in ANTIALIASED:
+        per_pixel += 8 * attributes + (SHADING_BYTES if shading in ("phong", "gooch") else 0)
+    check_memory(
+        width * height * per_pixel, f"a {width}x{height} {visibility} render with {shading} shading"
+    )
+
+
+def _fragment_bound(polygons: ScreenPolygons, width: int, height: int) -> int:
+    """At most this many fragments: the sum of the polygons' bounding boxes in pixels, on the raster."""
+    if not polygons.count:
+        return 0
+    starts = polygons.offsets[:-1]
+    low = np.floor(np.minimum.reduceat(polygons.xy, starts, axis=0))
+    high = np.ceil(np.maximum.reduceat(polygons.xy, starts, axis=0))
+    size = np.array([width, height])
+    extent = np.clip(high, 0, size) - np.clip(low, 0, size)
+    return int(np.prod(np.maximum(extent, 0), axis=1).sum())
+
+
+def _check_no_nan(stage: str, **arrays) -> None:
+    """Last resort: a NaN that got past the arithmetic is an error naming the stage, never a pixel."""
+    for name, array in arrays.items():
+        if array is not None and np.isnan(array).any():
+            raise ValueError(
+                f"render: the {stage} stage produced {int(np.isnan(array).sum())} NaN values in "
+                f"{name!r}; this is a bug in scanviz, please report it with the scene"
+            )
+
+
+def _opaque(
+    scene, prepared, chosen, width, height, shading, sample, *, subpixel_bits, perspective, tracer
+):
+    """(image, VisibilityResult): the visible pixels by `chosen`, shaded afterwards."""
+    stats = prepared.stats
+    result = solve(
+        chosen,
+        prepared.polygons,
+        width,
+        height,
+        sample=sample,
+        subpixel_bits=subpixel_bits,
+        perspective=perspective,
+        trace=tracer,
+    )
+    z = result.stats
+    stats.rows_scanned, stats.spans, stats.fragments = z.rows_scanned, z.spans, z.fragments
+    stats.depth_passed, stats.depth_failed, stats.path = z.depth_passed, z.depth_failed, z.path
+    visible = result.polygon >= 0
+    if shading == "flat":  # one gather: row 0 of the table is the background (polygon -1)
+        image = np.vstack([scene.background, prepared.flat_colors])[result.polygon + 1]
+        return image, result
+    image = np.empty((height, width, 3))
+    image[...] = scene.background
+    if shading == "gouraud":
+        image[visible] = result.values[visible]
+    else:
+        image[visible] = _shade_pixels(scene, shading, result.values[visible])
+        stats.shaded_pixels = int(visible.sum())
+        if shading == "phong" and tracer is not None and tracer.wants("illumination"):
+            _trace_illumination(scene, tracer, result)
+    return image, result
+
+
+def _zbuffer_path(tracer) -> str:
+    if tracer is not None:
+        return "traced reference"
+    if steps.replaced():
+        return "reference: a step of scanviz.steps is replaced"
+    return "opaque visibility, compiled kernel"
+
+
+def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
+    transparent = any(
+        not o.material.opaque or any(not m.opaque for m in o.mesh.materials) for o in scene.objects
+    )
+    deferred = shading in ("phong", "gooch") and visibility not in ANTIALIASED
+    opaque = visibility not in ANTIALIASED
+    work = (
+        f"{prepared.stats.polygons_drawn} polygons, at most "
+        f"{prepared.stats.fragments_estimated} fragments (their bounding boxes)"
+    )
+    stages = [
+        Stage("transform", True, "world -> eye -> clip -> NDC -> display"),
+        *prepared.stages,
+        Stage(
+            "shade vertices",
+            shading == "gouraud",
+            "Gouraud lights each vertex" if shading == "gouraud" else f"{shading} shading",
+        ),
+        Stage(
+            "shade pixels",
+            shading in ("phong", "gooch"),
+            (
+                "per visible pixel only (deferred)"
+                if deferred
+                else "per fragment, at the centroid of its covered sub-samples"
+            )
+            if shading in ("phong", "gooch")
+            else f"{shading} shading",
+        ),
+        Stage(
+            "z-buffer",
+            visibility == "zbuffer",
+            _zbuffer_path(tracer) if visibility == "zbuffer" else f"visibility={visibility!r}",
+        ),
+        Stage(
+            "list priority / image space",
+            opaque and visibility != "zbuffer",
+            f"{visibility}: decides what is visible, painted with the z-buffer's scan conversion"
+            f" ({_zbuffer_path(tracer)})"
+            if opaque and visibility != "zbuffer"
+            else f"visibility={visibility!r}",
+        ),
+        Stage(
+            "a-buffer",
+            visibility == "abuffer",
+            f"anti-aliasing: pixel masks, exact areas, fragment lists, packer; {work}"
+            if visibility == "abuffer"
+            else f"coverage blending instead (the flawed z-buffer anti-aliasing); {work}"
+            if visibility == "flawed"
+            else f"transparency ignored by {'the z-buffer' if visibility == 'zbuffer' else visibility}"
+            if transparent
+            else "opaque scene without anti-aliasing",
+        ),
+        Stage(
+            "feature edges",
+            edges,
+            "silhouettes and creases, midpoint lines, depth-tested" if edges else "edges=False",
+        ),
+        Stage(
+            "trace",
+            tracer is not None,
+            "recording events" if tracer is not None else "no tracer: nothing recorded",
+        ),
+    ]
+    return RenderPlan(tuple(stages))

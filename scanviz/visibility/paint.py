@@ -1,0 +1,142 @@
+"""The common output of the visibility algorithms: paint pieces in an order, or fill decided ids.
+
+Each algorithm decides *what* is visible; painting here turns its decision
+into the z-buffer's buffers (depth, polygon id and interpolated values per
+sample), drawing every polygon with the z-buffer's own scan conversion and
+interpolation, so where an algorithm picks the polygon the z-buffer picks,
+the pixel is the same to the bit. Three modes:
+
+- ``"over"``: pieces back to front, each overwriting what is there (painter's
+  algorithm, depth sort, BSP back to front);
+- ``"under"``: pieces front to back, each writing only samples still empty
+  (BSP front to back with a coverage mask);
+- ``"target"``: every drawn polygon writes only where the algorithm decided it
+  is visible (the image-space algorithms: scanline, Warnock).
+
+Traced, each sample emits `pixel_painted`; untraced, the compiled kernel
+(`scanviz.visibility.kernels.paint_pieces`) gives the same buffers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import steps
+from ..raster.fixed import SnappedPolygon
+from ..raster.interpolate import interpolate_rows, polygon_plane
+from ..trace.events import PixelPainted
+from . import kernels
+from .surfaces import Piece, Surfaces
+from .zbuffer import ZBufferStats, _attributes
+
+MODES = ("over", "under", "target")
+_KERNEL_MODE = {"over": kernels.OVER, "under": kernels.UNDER, "target": kernels.TARGET}
+
+
+@dataclass(frozen=True)
+class Painted:
+    """The buffers after painting: as `ZBufferResult` without the trace."""
+
+    depth: np.ndarray
+    polygon: np.ndarray
+    values: np.ndarray
+    stats: ZBufferStats
+
+
+def paint(
+    surfaces: Surfaces,
+    pieces: list[Piece],
+    mode: str,
+    *,
+    target: np.ndarray | None = None,
+    trace=None,
+) -> Painted:
+    """Paint `pieces` in order with `mode` (see the module); `target` (H, W) ids for "target"."""
+    if mode not in MODES:
+        raise ValueError(f"'mode' must be one of {MODES}; got {mode!r}")
+    if (mode == "target") != (target is not None):
+        raise ValueError("'target' is needed for mode 'target', and only there")
+    compiled = trace is None and surfaces.units.dtype == np.int64 and not steps.replaced()
+    if compiled:
+        return _paint_compiled(surfaces, pieces, mode, target)
+    return _paint_reference(surfaces, pieces, mode, target, trace)
+
+
+def fill(surfaces: Surfaces, target: np.ndarray, *, trace=None) -> Painted:
+    """Draw every drawn polygon where `target` says it is visible (mode "target")."""
+    return paint(surfaces, surfaces.pieces(), "target", target=target, trace=trace)
+
+
+def _paint_compiled(surfaces, pieces, mode, target) -> Painted:
+    cut_rows = [surfaces.cut_rows(piece) for piece in pieces]
+    starts = np.concatenate([[0], np.cumsum([len(r) for r in cut_rows])]).astype(np.int64)
+    rows = np.concatenate([np.zeros((0, 11)), *cut_rows])
+    polygons = surfaces.polygons
+    depth, ids, values, counts = kernels.paint_pieces(
+        surfaces.units, surfaces.units / surfaces.scale, polygons.z, surfaces.channels,
+        polygons.offsets, surfaces.scale, surfaces.width, surfaces.height, polygons.value_count,
+        np.array([piece.polygon for piece in pieces], np.int64), starts, rows,
+        _KERNEL_MODE[mode], np.zeros((1, 1), np.int64) if target is None else target,
+    )  # fmt: skip
+    return Painted(depth, ids, values, _stats(counts, len(pieces), "compiled"))
+
+
+def _stats(counts, pieces: int, path: str) -> ZBufferStats:
+    return ZBufferStats(
+        polygons=pieces,
+        polygons_drawn=int(counts[kernels.DRAWN]),
+        polygons_skipped=int(counts[kernels.SKIPPED]),
+        rows_scanned=int(counts[kernels.ROWS]),
+        spans=int(counts[kernels.SPANS]),
+        fragments=int(counts[kernels.FRAGMENTS]),
+        depth_passed=int(counts[kernels.PASSED]),
+        depth_failed=int(counts[kernels.FAILED]),
+        path=path,
+    )
+
+
+def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
+    """The traced painter: `zbuffer_reference` with the mode's test in place of the depth test."""
+    width, height, polygons = surfaces.width, surfaces.height, surfaces.polygons
+    depth = np.full((height, width), np.inf)
+    ids = np.full((height, width), -1, np.int64)
+    values = np.zeros((height, width, polygons.value_count))
+    counts = np.zeros(kernels.STAT_FIELDS, np.int64)
+    for piece in pieces:
+        p = piece.polygon
+        first, stop = polygons.offsets[p], polygons.offsets[p + 1]
+        snapped = SnappedPolygon(
+            surfaces.units[first:stop], np.array([0, stop - first]), surfaces.bits, surfaces.sample
+        )
+        plane = polygon_plane(snapped, polygons.z[first:stop])
+        if not surfaces.drawn[p]:
+            counts[kernels.SKIPPED] += 1
+            continue
+        fragments = counts[kernels.FRAGMENTS]
+        for y, spans in interpolate_rows(
+            snapped, plane, surfaces.channels[first:stop], width, height
+        ):
+            counts[kernels.ROWS] += 1
+            counts[kernels.SPANS] += len(spans)
+            traced = trace is not None and trace.wants("pixel_painted", polygon=p, y=y)
+            for span in spans:
+                for x, z, channel_values in span.samples():
+                    previous = int(ids[y, x])
+                    if mode == "over":
+                        write = True
+                    elif mode == "under":
+                        write = previous < 0
+                    else:
+                        write = int(target[y, x]) == p
+                    write = write and surfaces.keeps(piece, x, y)
+                    if traced:
+                        trace.emit(PixelPainted(p, piece.label, x, y, float(z), previous, write))
+                    if write:
+                        depth[y, x], ids[y, x] = z, p
+                        values[y, x] = _attributes(channel_values, surfaces.perspective)
+                    counts[kernels.FRAGMENTS] += 1
+                    counts[kernels.PASSED if write else kernels.FAILED] += 1
+        counts[kernels.DRAWN] += counts[kernels.FRAGMENTS] > fragments
+    return Painted(depth, ids, values, _stats(counts, len(pieces), "traced reference"))
