@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import steps
+from ..raster.api import as_tracer
 from ..raster.fixed import SnappedPolygon
 from ..raster.interpolate import interpolate_rows, polygon_plane
 from ..trace.events import PixelPainted
@@ -58,6 +59,7 @@ def paint(
         raise ValueError(f"'mode' must be one of {MODES}; got {mode!r}")
     if (mode == "target") != (target is not None):
         raise ValueError("'target' is needed for mode 'target', and only there")
+    trace = as_tracer(trace)
     compiled = trace is None and surfaces.units.dtype == np.int64 and not steps.replaced()
     if compiled:
         return _paint_compiled(surfaces, pieces, mode, target)
