@@ -318,3 +318,28 @@ def paint_pieces(
         )  # fmt: skip
         stats[DRAWN] += stats[FRAGMENTS] > fragments
     return depth, ids, values, stats
+
+
+@njit(cache=True)
+def polygon_planes(units, positions, z, offsets, scale, width, height):
+    """Per polygon: its plane (x_first, y_first, z_first, dzdx, dzdy), Newell's (a, b, c), and drawn.
+
+    The planes `paint_pieces` and `zbuffer_polygons` compute (the same
+    `depth_plane`); drawn is False where those skip the polygon.
+    """
+    count = offsets.shape[0] - 1
+    planes, normals = np.zeros((count, 5)), np.zeros((count, 3))
+    drawn = np.zeros(count, np.bool_)
+    for p in range(count):
+        first, stop = offsets[p], offsets[p + 1]
+        a, b, c, dzdx, dzdy, z_first = depth_plane(
+            positions[first:stop, 0], positions[first:stop, 1], z[first:stop]
+        )
+        planes[p, 0], planes[p, 1], planes[p, 2] = positions[first, 0], positions[first, 1], z_first
+        planes[p, 3], planes[p, 4] = dzdx, dzdy
+        normals[p, 0], normals[p, 1], normals[p, 2] = a, b, c
+        xs, ys = units[first:stop, 0], units[first:stop, 1]
+        drawn[p] = c != 0.0 and reaches_raster(
+            xs.min(), xs.max(), ys.min(), ys.max(), scale, width, height
+        )
+    return planes, normals, drawn

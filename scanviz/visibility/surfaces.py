@@ -33,6 +33,7 @@ import numpy as np
 
 from ..raster.fixed import exact_bits, snap_units
 from ..raster.interpolate import depth_plane, plane_depth, reaches_raster, vertex_channels
+from . import kernels
 from .zbuffer import ScreenPolygons
 
 PLANE_TOLERANCE = 1e-9  # relative to the scene's depth magnitude (at least 1)
@@ -116,20 +117,13 @@ class Surfaces:
         bits = exact_bits(polygons.xy) if subpixel_bits is None else subpixel_bits
         units = snap_units(polygons.xy, sample, bits)
         scale = 2 ** (bits + 1)
-        positions = np.array([[int(u) / scale for u in row] for row in units]).reshape(-1, 2)
-        count = polygons.count
-        planes, normals, drawn = np.zeros((count, 5)), np.zeros((count, 3)), np.zeros(count, bool)
-        for p in range(count):
-            rows = slice(polygons.offsets[p], polygons.offsets[p + 1])
-            xs, ys, zs = positions[rows, 0], positions[rows, 1], polygons.z[rows]
-            a, b, c, dzdx, dzdy, z_first = depth_plane(xs.tolist(), ys.tolist(), zs.tolist())
-            planes[p] = xs[0], ys[0], z_first, dzdx, dzdy
-            normals[p] = a, b, c
-            u = units[rows]
-            drawn[p] = c != 0.0 and reaches_raster(
-                int(u[:, 0].min()), int(u[:, 0].max()), int(u[:, 1].min()), int(u[:, 1].max()),
-                scale, width, height,
-            )  # fmt: skip
+        if units.dtype == np.int64:  # exact: every unit is below 2**53
+            positions = units / scale
+            planes, normals, drawn = kernels.polygon_planes(
+                units, positions, polygons.z, polygons.offsets, scale, width, height
+            )
+        else:
+            positions, planes, normals, drawn = _exact_planes(polygons, units, scale, width, height)
         magnitude = float(np.abs(polygons.z).max()) if len(polygons.z) else 1.0
         return cls(
             polygons=polygons,
@@ -222,6 +216,25 @@ class Surfaces:
             if (difference > 0.0) != cut.behind:
                 return False
         return True
+
+
+def _exact_planes(polygons, units, scale, width, height):
+    """`kernels.polygon_planes` for units beyond int64 (subpixel_bits=None), in Python."""
+    positions = np.array([[int(u) / scale for u in row] for row in units]).reshape(-1, 2)
+    count = polygons.count
+    planes, normals, drawn = np.zeros((count, 5)), np.zeros((count, 3)), np.zeros(count, bool)
+    for p in range(count):
+        rows = slice(polygons.offsets[p], polygons.offsets[p + 1])
+        xs, ys, zs = positions[rows, 0], positions[rows, 1], polygons.z[rows]
+        a, b, c, dzdx, dzdy, z_first = depth_plane(xs.tolist(), ys.tolist(), zs.tolist())
+        planes[p] = xs[0], ys[0], z_first, dzdx, dzdy
+        normals[p] = a, b, c
+        u = units[rows]
+        drawn[p] = c != 0.0 and reaches_raster(
+            int(u[:, 0].min()), int(u[:, 0].max()), int(u[:, 1].min()), int(u[:, 1].max()),
+            scale, width, height,
+        )  # fmt: skip
+    return positions, planes, normals, drawn
 
 
 def _rows(points: list) -> np.ndarray:
