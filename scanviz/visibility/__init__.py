@@ -12,11 +12,13 @@ the pixels are the z-buffer's to the bit.
 from .interface import ALGORITHMS, Decision, Visibility, VisibilityResult, ZBuffer, algorithm, solve
 from .painter import Painter
 from .surfaces import PLANE_TOLERANCE, Cut, Piece, Surfaces
+from .warnock import Quadtree, Warnock, WarnockStats
 from .zbuffer import ScreenPolygons, ZBufferResult, ZBufferStats, zbuffer
 
 __all__ = [
     "ALGORITHMS",
     "PLANE_TOLERANCE",
+    "Quadtree",
     "Cut",
     "Decision",
     "Painter",
@@ -25,6 +27,8 @@ __all__ = [
     "Surfaces",
     "Visibility",
     "VisibilityResult",
+    "Warnock",
+    "WarnockStats",
     "ZBuffer",
     "ZBufferResult",
     "ZBufferStats",
