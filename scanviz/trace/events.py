@@ -700,7 +700,10 @@ class PaintOrder(Event):
 
 @dataclass(frozen=True)
 class PolygonsSorted(Event):
-    """The list sorted on `key` ("zmax" descending: the farthest first), before any test."""
+    """The list sorted on `key` ("zmax" descending: the farthest first), before any test.
+
+    Depth sort emits it again after each split: the list re-sorted with the two new pieces.
+    """
 
     kind: ClassVar[str] = "polygons_sorted"
     key: str
@@ -724,7 +727,9 @@ class PairTested(Event):
     no_overlap; then the same with S and S' exchanged when the first round
     fails). ``outcome`` is "no_overlap" (the minimax test: S' is wholly
     nearer), "order_ok" (S may be painted before S'), "swap" (S' goes to
-    the far end), or "split" (a cycle: S is cut by the plane of S').
+    the far end), "split" (a cycle: S is cut by the plane of S'), or
+    "unresolved" (no split can break it: the split budget is spent, or a cycle
+    has no member straddling another's plane; the pair is kept in list order).
     """
 
     kind: ClassVar[str] = "pair_tested"

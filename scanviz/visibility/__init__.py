@@ -9,6 +9,7 @@ polygon per sample; all paint with the z-buffer's scan conversion
 the pixels are the z-buffer's to the bit.
 """
 
+from .depth_sort import DepthSort, DepthSortStats
 from .interface import ALGORITHMS, Decision, Visibility, VisibilityResult, ZBuffer, algorithm, solve
 from .painter import Painter
 from .surfaces import PLANE_TOLERANCE, Cut, Piece, Surfaces
@@ -21,6 +22,8 @@ __all__ = [
     "Quadtree",
     "Cut",
     "Decision",
+    "DepthSort",
+    "DepthSortStats",
     "Painter",
     "Piece",
     "ScreenPolygons",
