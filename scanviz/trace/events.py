@@ -781,7 +781,7 @@ class BspNode(Event):
 
     ``node`` numbers nodes in the order they are built (depth first, front
     subtree first); ``parent`` is -1 at the root and ``side`` "front" or
-    "back" of the parent. ``candidates`` are the roots considered (one for
+    "back" of the parent ("root" at the root). ``candidates`` are the roots considered (one for
     rule "first" and "random").
     """
 

@@ -9,6 +9,7 @@ polygon per sample; all paint with the z-buffer's scan conversion
 the pixels are the z-buffer's to the bit.
 """
 
+from .bsp import BSP, BspStats, BspTree, BspTreeNode
 from .depth_sort import DepthSort, DepthSortStats
 from .interface import ALGORITHMS, Decision, Visibility, VisibilityResult, ZBuffer, algorithm, solve
 from .painter import Painter
@@ -18,6 +19,10 @@ from .zbuffer import ScreenPolygons, ZBufferResult, ZBufferStats, zbuffer
 
 __all__ = [
     "ALGORITHMS",
+    "BSP",
+    "BspStats",
+    "BspTree",
+    "BspTreeNode",
     "PLANE_TOLERANCE",
     "Quadtree",
     "Cut",

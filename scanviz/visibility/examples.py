@@ -16,6 +16,8 @@ Sizes are chosen for a 16 x 12 raster unless a function says otherwise.
   end: sorting on the nearest vertex (the painter's default) paints the short
   one first and the long one over it, which is wrong; sorting on the farthest
   vertex happens to be right here.
+- `slides_bsp`: the slides' BSP example from viewpoint C (32 x 24, a
+  reconstruction; `BSP(sequence=BSP_SEQUENCE)` gives the slides' tree).
 """
 
 from __future__ import annotations
@@ -99,3 +101,36 @@ def long_behind_short() -> ScreenPolygons:
             ],  # short: at 0.5, over the far end
         ]
     )
+
+
+# The slides' BSP example, top view (u right, v away from the viewpoint C at the origin): each
+# wall (number, start, end, bottom, top) runs from start to end with its front side on the right.
+BSP_WALLS = (
+    (1, (-3.0, 3.0), (-1.0, 3.0), -1.0, 1.5),
+    (2, (4.0, 2.5), (1.0, 3.0), -1.0, 0.5),
+    (3, (-4.0, 6.0), (2.0, 6.0), -1.0, 0.5),
+    (4, (5.0, 9.0), (-5.0, 9.0), -1.0, 3.0),
+    (5, (3.0, 4.0), (3.0, 8.0), -1.0, 3.0),
+)
+BSP_SEQUENCE = (3, 2, 4, 5, 1)  # the list MakeBSP takes on the slides: pgon 3 first
+
+
+def slides_bsp() -> ScreenPolygons:
+    """The slides' BSP example seen from viewpoint C (32 x 24): five walls, numbered as there.
+
+    The slides' figure is lost; this is a reconstruction (`BSP_WALLS`, a top
+    view) with the tree the slides build from pgon 3: 3 at the root, whose
+    plane splits 5 into 5a (in front) and 5b (behind); 2 the root of the
+    front list (5a in front of it, 1 behind), 4 of the back list (5b behind).
+    From C, the viewer is in front of 3 and 1 and behind 2, 4 and 5. Polygon
+    i is the slides' pgon i: polygon 0 is a placeholder off the raster, which
+    every algorithm leaves out. Build with ``BSP(sequence=BSP_SEQUENCE)`` for
+    the slides' list order. Each wall is projected from C (focal length 10,
+    C at pixel (12, 10)) with depth z = 1 - 1/v, a projective map: planes stay
+    planes and sides stay sides.
+    """
+    walls = [[(-10.0, -10.0, 0.5), (-9.0, -10.0, 0.5), (-10.0, -9.0, 0.5)]]
+    for _, (u0, v0), (u1, v1), bottom, top in BSP_WALLS:
+        corners = [(u0, v0, bottom), (u1, v1, bottom), (u1, v1, top), (u0, v0, top)]
+        walls.append([(12 + 10 * u / v, 10 + 10 * h / v, 1 - 1 / v) for u, v, h in corners])
+    return _scene(walls)
