@@ -13,7 +13,10 @@ import importlib
 
 from .core import Exercise
 
-MODULES = ("lines", "scan", "triangles", "interpolation", "zbuffer", "viewing", "abuffer")
+MODULES = (
+    "lines", "scan", "triangles", "interpolation", "zbuffer", "viewing", "abuffer", "depth_sort",
+    "bsp",
+)  # fmt: skip
 
 _CATALOG: dict[str, Exercise] = {}
 

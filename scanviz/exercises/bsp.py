@@ -1,0 +1,218 @@
+"""Exercise on the BSP tree's display order (scanviz.visibility.bsp), through `solve`.
+
+The student writes the step ``bsp_display_order``: at each node of the
+tree, given whether the viewer is in front of the node's plane and the
+display's direction, the order of the node's back subtree, its own
+polygons and its front subtree. The real BSP builds the tree and displays
+it with that step; the trace of the visits and the painting order is
+graded. Cases are screen polygons (x, y in pixels, depth z, smaller =
+nearer), the slides' example among them (`scanviz.visibility.examples.slides_bsp`).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import numpy as np
+
+from .. import steps
+from ..visibility import ScreenPolygons, solve
+from ..visibility.bsp import BSP, ORDERS, ROOTS, display_order
+from ..visibility.examples import BSP_SEQUENCE, slides_bsp
+from .catalog import register
+from .core import Case, Exercise, Variant, edited_variant
+
+
+def case_polygons(inputs: dict) -> ScreenPolygons:
+    """The screen polygons of a case, each vertex's value its polygon's index."""
+    polygons = [[tuple(map(float, v)) for v in vertices] for vertices in inputs["polygons"]]
+    values = [np.full((len(p), 1), float(i)) for i, p in enumerate(polygons)]
+    return ScreenPolygons.from_polygons(polygons, values)
+
+
+def case_options(inputs: dict) -> BSP:
+    """The BSP of a case: its root rule, display order and polygon list order."""
+    return BSP(root=inputs["root"], order=inputs["order"], sequence=tuple(inputs["sequence"]))
+
+
+def _solve_with(fn, inputs, tracer):
+    with steps.using(bsp_display_order=fn):
+        return solve(
+            case_options(inputs),
+            case_polygons(inputs),
+            inputs["width"],
+            inputs["height"],
+            trace=tracer,
+        )
+
+
+def _node_of_call(index: int, trace: list) -> str:
+    visits = [e for e in trace if e.kind == "bsp_visited"]
+    if index >= len(visits):
+        return f"call {index + 1}"
+    visit = visits[index]
+    return f"node {visit.node} (piece {visit.piece})"
+
+
+def _slides_case(order: str) -> dict:
+    polygons = slides_bsp()
+    offsets = polygons.offsets.tolist()
+    vertices = np.column_stack([polygons.xy, polygons.z]).tolist()
+    return {
+        "polygons": [vertices[a:b] for a, b in zip(offsets, offsets[1:], strict=False)],
+        "width": 32,
+        "height": 24,
+        "root": "first",
+        "order": order,
+        "sequence": list(BSP_SEQUENCE),
+    }
+
+
+def _random_polygon(rng: random.Random, width: int, height: int) -> list:
+    """A triangle or convex quad with a random depth plane, either way round (front or back)."""
+    n, cx, cy = rng.choice((3, 4)), rng.uniform(1, width - 1), rng.uniform(1, height - 1)
+    radius = rng.uniform(2, max(width, height) / 2)
+    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(n))
+    z0, dzdx, dzdy = rng.uniform(0.2, 0.8), rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05)
+    points = []
+    for a in angles:
+        x, y = cx + radius * math.cos(a), cy + radius * math.sin(a)
+        points.append([round(x, 3), round(y, 3), round(z0 + dzdx * (x - cx) + dzdy * (y - cy), 4)])
+    return points[::-1] if rng.random() < 0.5 else points
+
+
+def _bsp_case(rng: random.Random) -> Case:
+    width, height = rng.randint(8, 16), rng.randint(8, 16)
+    count = rng.randint(2, 6)
+    polygons = [_random_polygon(rng, width, height) for _ in range(count)]
+    order, root = rng.choice(ORDERS), rng.choice(ROOTS)
+    sequence = rng.sample(range(count), rng.randint(0, count))
+    return Case(
+        f"{count} polygons, {order.replace('_', ' ')}, root {root}",
+        {
+            "polygons": polygons,
+            "width": width,
+            "height": height,
+            "root": root,
+            "order": order,
+            "sequence": sequence,
+        },
+        order.replace("_", " "),
+    )
+
+
+DISPLAY_ORDER_SOLUTION = """\
+def bsp_display_order(viewer_in_front, front_to_back):
+    if viewer_in_front:
+        far, near = "back", "front"
+    else:
+        far, near = "front", "back"
+    if front_to_back:
+        return (near, "self", far)
+    return (far, "self", near)
+"""
+
+
+def _order_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
+    return edited_variant(DISPLAY_ORDER_SOLUTION, name, hint, *edits)
+
+
+EXERCISE = register(
+    Exercise(
+        id="bsp_display_order",
+        number=17,
+        title="The BSP tree's display order",
+        stage="visibility",
+        kind="step",
+        points=2,
+        answer="bsp_display_order",
+        idea=(
+            "A BSP tree (Fuchs, Kedem and Naylor) holds at each node a polygon's plane, the "
+            "polygons on its front side in the front subtree and those behind it in the back "
+            "subtree (straddling ones are split). **DisplayBSP** paints the whole tree in a "
+            "right order for any viewpoint: at each node, first the subtree on the side of the "
+            "plane **away from the viewer**, then the node's own polygons, then the subtree on "
+            "the viewer's side. So if the viewer is in front of the node's plane, the back "
+            "subtree is drawn first (the slides: *viewpoint on front -> display back first*), "
+            "else the front subtree.\n\n"
+            "With a coverage mask the tree can also be displayed **front to back** (each "
+            "sample is written only while still empty): then every node's order is reversed, "
+            "the viewer's side first. Your step answers one node at a time."
+        ),
+        stub=(
+            "def bsp_display_order(viewer_in_front, front_to_back):\n"
+            '    """viewer_in_front: True if the viewer is on the front side of the node\'s\n'
+            "    plane. front_to_back: True when the display goes front to back (with a\n"
+            "    coverage mask), False for back to front.\n"
+            '    Return the order to display the node\'s parts in: a tuple of "back" (its\n'
+            '    back subtree), "self" (its own polygons) and "front" (its front subtree),\n'
+            '    each once."""\n'
+            "    raise NotImplementedError\n"
+        ),
+        solution=DISPLAY_ORDER_SOLUTION,
+        call=_solve_with,
+        reference=display_order,
+        public=(
+            Case(
+                "the slides' example from viewpoint C, back to front", _slides_case("back_to_front")
+            ),
+            Case(
+                "the slides' example from viewpoint C, front to back", _slides_case("front_to_back")
+            ),
+            Case(
+                "two triangles, the viewer behind the nearer one's plane, back to front",
+                {
+                    "polygons": [
+                        [[1, 1, 0.3], [1, 9, 0.3], [9, 1, 0.3]],  # clockwise: seen from its back
+                        [[3, 3, 0.6], [11, 3, 0.6], [3, 11, 0.6]],
+                    ],
+                    "width": 12,
+                    "height": 12,
+                    "root": "first",
+                    "order": "back_to_front",
+                    "sequence": [],
+                },
+            ),
+        ),
+        generate=_bsp_case,
+        variants=(
+            _order_variant(
+                "always_back_first",
+                "which subtree is far depends on the viewer: behind the node's plane (viewer not "
+                "in front), the front subtree is the far one and is drawn first",
+                ('        far, near = "front", "back"\n', '        far, near = "back", "front"\n'),
+            ),
+            _order_variant(
+                "sides_swapped",
+                "back to front draws the side away from the viewer first: the back subtree when "
+                "the viewer is in front of the plane (viewpoint on front -> display back first)",
+                ('    return (far, "self", near)\n', '    return (near, "self", far)\n'),
+            ),
+            _order_variant(
+                "ignores_front_to_back",
+                "front to back reverses every node's order: the viewer's side first, then the "
+                "node, then the far side",
+                ("    if front_to_back:\n", "    if False:\n"),
+            ),
+            _order_variant(
+                "self_first",
+                "a node's own polygons go between its subtrees: after everything on the far "
+                "side, before everything on the viewer's side",
+                ('    return (far, "self", near)\n', '    return ("self", far, near)\n'),
+            ),
+        ),
+        kinds=("bsp_visited", "paint_order"),
+        step="bsp_display_order",
+        place=_node_of_call,
+        result=lambda result: result.polygon.tolist(),
+        stepper=(
+            "from scanviz.exercises.bsp import case_options, case_polygons\n"
+            "from scanviz.widgets.bsp import bsp_stepper\n"
+            "options = case_options(CASE)\n"
+            "bsp_stepper(case_polygons(CASE), CASE['width'], CASE['height'], root=options.root,\n"
+            "            order=options.order, sequence=options.sequence)"
+        ),
+        banned=("scanviz.visibility.bsp", "display_order"),
+    )
+)

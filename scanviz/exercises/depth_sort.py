@@ -1,0 +1,293 @@
+"""Exercise on the ambiguity tests of depth sort (scanviz.visibility.depth_sort), through `solve`.
+
+The student writes the step ``depth_order_test``: for S, the piece at the
+far end of the list, and an S' that overlaps it in depth, the first of the
+slides' tests that shows S may be painted before S' (bounding rectangles in
+x, in y, S behind the plane of S', S' in front of the plane of S, the
+projections apart), or None. The real depth sort runs with it: its pairs,
+swaps and splits are graded, then the image. Cases are screen polygons (x,
+y in pixels, the sample frame of corner sampling; depth z, smaller nearer),
+the slides' examples among them (`scanviz.visibility.examples`).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import numpy as np
+
+from .. import steps
+from ..visibility import ScreenPolygons, examples, solve
+from ..visibility.depth_sort import DepthSort, depth_order_test
+from .catalog import register
+from .core import Case, Exercise, Variant, edited_variant
+
+KINDS = ("pair_tested", "pieces_swapped", "polygon_split")
+REVERSED_TESTS = ("other_behind_plane", "s_in_front")
+
+
+def case_polygons(inputs: dict) -> ScreenPolygons:
+    """The screen polygons of a case, each vertex's value its polygon's index."""
+    polygons = [[tuple(map(float, v)) for v in vertices] for vertices in inputs["polygons"]]
+    values = [np.full((len(p), 1), float(i)) for i, p in enumerate(polygons)]
+    return ScreenPolygons.from_polygons(polygons, values)
+
+
+def _solve_with(fn, inputs, tracer):
+    with steps.using(depth_order_test=fn):
+        return solve(
+            DepthSort(), case_polygons(inputs), inputs["width"], inputs["height"], trace=tracer
+        )
+
+
+def _pair_of_call(index: int, trace: list) -> str:
+    """Which pair call `index` tested: each pair past minimax calls once, twice if reversed."""
+    calls = []
+    for e in trace:
+        if e.kind == "pair_tested" and not e.tests[0].passed:
+            calls.append(f"pair S = {e.piece}, S' = {e.other}")
+            if any(t.name in REVERSED_TESTS for t in e.tests):
+                calls.append(f"pair S = {e.piece}, S' = {e.other} (reversed: S' as S)")
+    return calls[index] if index < len(calls) else f"call {index + 1}"
+
+
+def _inputs(polygons: ScreenPolygons, width: int, height: int) -> dict:
+    offsets = polygons.offsets.tolist()
+    vertices = np.column_stack([polygons.xy, polygons.z]).tolist()
+    return {
+        "polygons": [vertices[a:b] for a, b in zip(offsets, offsets[1:], strict=False)],
+        "width": width,
+        "height": height,
+    }
+
+
+def _plane_polygon(rng: random.Random, width: int, height: int) -> list:
+    """A triangle or convex quad with a random depth plane, either way round."""
+    n, cx, cy = rng.choice((3, 4)), rng.uniform(1, width - 1), rng.uniform(1, height - 1)
+    radius = rng.uniform(2, max(width, height) / 2)
+    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(n))
+    z0, dzdx, dzdy = rng.uniform(0.3, 0.7), rng.uniform(-0.06, 0.06), rng.uniform(-0.06, 0.06)
+    points = []
+    for a in angles:
+        x, y = cx + radius * math.cos(a), cy + radius * math.sin(a)
+        points.append([round(x, 3), round(y, 3), round(z0 + dzdx * (x - cx) + dzdy * (y - cy), 4)])
+    return points[::-1] if rng.random() < 0.5 else points
+
+
+def _touching_rectangles(rng: random.Random, width: int, height: int) -> list:
+    """Two rectangles sharing a border at an integer x (or y), crossing each other's planes."""
+    cut = rng.randint(3, min(width, height) - 3)
+    low, high = rng.randint(0, 2), rng.randint(min(width, height) - 2, min(width, height))
+    near, far = round(rng.uniform(0.2, 0.4), 3), round(rng.uniform(0.6, 0.8), 3)
+    first = [[low, low, near], [cut, low, near], [cut, high, far], [low, high, far]]
+    second = [[cut, low + 1, far], [high, low + 1, far], [high, high - 1, near]]
+    second.append([cut, high - 1, near])
+    if rng.random() < 0.5:  # share a horizontal border instead
+        first, second = ([[y, x, z] for x, y, z in p][::-1] for p in (first, second))
+    return [first, second]
+
+
+def _rotated_bars(rng: random.Random, size: int) -> list:
+    """Three bars in a cycle (the slides' cyclic overlap), turned by a random angle."""
+    bars = _inputs(examples.cyclic_overlap(size), size, size)["polygons"]
+    turn, centre = rng.uniform(0, 2 * math.pi), size / 2
+    c, s = math.cos(turn), math.sin(turn)
+    return [
+        [
+            [
+                round(centre + c * (x - centre) - s * (y - centre), 3),
+                round(centre + s * (x - centre) + c * (y - centre), 3),
+                z,
+            ]
+            for x, y, z in bar
+        ]
+        for bar in bars
+    ]
+
+
+def _depth_sort_case(rng: random.Random) -> Case:
+    width, height = rng.randint(10, 16), rng.randint(10, 16)
+    category = rng.choice(("sloped polygons", "touching rectangles", "cyclic bars", "mixed"))
+    if category == "cyclic bars":
+        width = height = 24
+        polygons = _rotated_bars(rng, 24)
+    elif category == "touching rectangles":
+        polygons = _touching_rectangles(rng, width, height)
+    else:
+        polygons = [_plane_polygon(rng, width, height) for _ in range(rng.randint(2, 5))]
+        if category == "mixed":
+            polygons += _touching_rectangles(rng, width, height)
+    return Case(
+        f"{category}: {len(polygons)} polygons",
+        {"polygons": polygons, "width": width, "height": height},
+        category,
+    )
+
+
+DEPTH_ORDER_SOLUTION = """\
+from fractions import Fraction
+
+
+def depth_order_test(s, other, s_plane, other_plane, tolerance):
+    def apart(axis):
+        s_low, s_high = min(v[axis] for v in s), max(v[axis] for v in s)
+        low, high = min(v[axis] for v in other), max(v[axis] for v in other)
+        return s_high <= low or high <= s_low
+
+    def plane(p, x, y):
+        x0, y0, z0, dzdx, dzdy = p
+        return z0 + dzdx * (x - x0) + dzdy * (y - y0)
+
+    if apart(0):
+        return "x_extent"
+    if apart(1):
+        return "y_extent"
+    if all(z - plane(other_plane, x, y) >= -tolerance for x, y, z in s):
+        return "s_behind_plane"
+    if all(z - plane(s_plane, x, y) <= tolerance for x, y, z in other):
+        return "other_in_front"
+    if not (separated(s, other) or separated(other, s)):
+        return None
+    return "no_overlap"
+
+
+def cross(o, a, b):
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+def separated(polygon, other):
+    # Convex polygons do not overlap iff some edge has the other wholly on its outer side.
+    points = [(Fraction(x), Fraction(y)) for x, y, _ in polygon]
+    others = [(Fraction(x), Fraction(y)) for x, y, _ in other]
+    area = sum(cross(points[0], p, q) for p, q in zip(points[1:], points[2:]))
+    if area == 0:
+        return True  # no area: it overlaps nothing
+    turn = 1 if area > 0 else -1
+    for p, q in zip(points, points[1:] + points[:1]):
+        if p != q and all(turn * cross(p, q, r) <= 0 for r in others):
+            return True
+    return False
+"""
+
+
+def _variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
+    return edited_variant(DEPTH_ORDER_SOLUTION, name, hint, *edits)
+
+
+EXTENT_TESTS = """\
+    if apart(0):
+        return "x_extent"
+    if apart(1):
+        return "y_extent"
+"""
+BEHIND_TEST = """\
+    if all(z - plane(other_plane, x, y) >= -tolerance for x, y, z in s):
+        return "s_behind_plane"
+"""
+
+
+register(
+    Exercise(
+        id="depth_sort_tests",
+        number=16,
+        title="The ambiguity tests of depth sort",
+        stage="visibility",
+        kind="step",
+        points=4,
+        answer="depth_order_test",
+        idea=(
+            "Depth sort (Newell, Newell and Sancha) sorts the polygons on their farthest "
+            "depth (**smaller z is nearer**: the largest zmax first) and paints from the far "
+            "end of the list. Before S, the far end, is painted, each S' that overlaps it in "
+            "depth (S'.zmax > S.zmin: the minimax test) is checked with the slides' tests, "
+            "cheapest first; the **first** that passes shows S may go before S':\n\n"
+            "1. `x_extent`: the x extents do not overlap; 2. `y_extent`: the y extents do not "
+            "overlap (extents that only touch are apart: a polygon owns no sample on its right "
+            "or top border);\n3. `s_behind_plane`: every vertex of S is behind S''s plane or on "
+            "it (depth at least the plane's, within `tolerance`);\n4. `other_in_front`: every "
+            "vertex of S' is in front of S's plane or on it;\n5. `no_overlap`: the projections "
+            "onto the screen do not overlap (touching does not count; decide exactly).\n\n"
+            "If none passes, depth sort calls your test again with S and S' exchanged: if "
+            "then S' may go before S, S' moves to the far end, else a piece is split."
+        ),
+        stub=(
+            "def depth_order_test(s, other, s_plane, other_plane, tolerance):\n"
+            '    """s, other: the vertices of S and S\', tuples of (x, y, z) (x, y in pixels,\n'
+            "    z the depth, smaller is nearer). s_plane, other_plane: their depth planes\n"
+            "    (x0, y0, z0, dzdx, dzdy): depth z0 + dzdx * (x - x0) + dzdy * (y - y0).\n"
+            "    tolerance: how far from a plane (in depth) a vertex still counts as on it.\n"
+            '    Return the name of the first test that passes, in order: "x_extent",\n'
+            '    "y_extent", "s_behind_plane", "other_in_front", "no_overlap"; None if none\n'
+            "    does. For no_overlap the polygons are convex; decide exactly (Fraction(x)\n"
+            '    holds a float exactly)."""\n'
+            "    raise NotImplementedError\n"
+        ),
+        solution=DEPTH_ORDER_SOLUTION,
+        call=_solve_with,
+        reference=depth_order_test,
+        public=(
+            Case(
+                "the UMBC slide: a sloped triangle piercing two flat polygons",
+                _inputs(examples.slides_zbuffer(), 10, 9),
+            ),
+            Case(
+                "three bars in a cycle (the slides' cyclic overlap)",
+                _inputs(examples.cyclic_overlap(), 24, 24),
+            ),
+            Case(
+                "two rectangles passing through each other",
+                _inputs(examples.interpenetrating(), 16, 12),
+            ),
+            Case(
+                "a long polygon behind a short one",
+                _inputs(examples.long_behind_short(), 16, 12),
+            ),
+            Case(
+                "two rectangles sharing the border x = 6, each crossing the other's plane",
+                {
+                    "polygons": [
+                        [[1, 1, 0.2], [6, 1, 0.2], [6, 9, 0.8], [1, 9, 0.8]],
+                        [[6, 2, 0.8], [11, 2, 0.8], [11, 8, 0.3], [6, 8, 0.3]],
+                    ],
+                    "width": 12,
+                    "height": 10,
+                },
+            ),
+        ),
+        generate=_depth_sort_case,
+        variants=(
+            _variant(
+                "extents_touching_overlap",
+                "a polygon owns no sample on its right or top border, so extents that only "
+                "touch are apart: s_high <= low, not s_high < low",
+                ("return s_high <= low or high <= s_low", "return s_high < low or high < s_low"),
+            ),
+            _variant(
+                "plane_sign_reversed",
+                "smaller z is nearer: S is behind the plane of S' where its depth is at least "
+                "the plane's (z - plane >= -tolerance), not at most",
+                (
+                    "z - plane(other_plane, x, y) >= -tolerance",
+                    "z - plane(other_plane, x, y) <= tolerance",
+                ),
+            ),
+            _variant(
+                "plane_tests_first",
+                "the tests run cheapest first, as on the slides: the x and y extents before "
+                "the plane tests",
+                (EXTENT_TESTS + BEHIND_TEST, BEHIND_TEST + EXTENT_TESTS),
+            ),
+        ),
+        kinds=KINDS,
+        step="depth_order_test",
+        place=_pair_of_call,
+        result=lambda result: result.polygon.tolist(),
+        stepper=(
+            "from scanviz.exercises.depth_sort import case_polygons\n"
+            "from scanviz.widgets.depth_sort import depth_sort_stepper\n"
+            "depth_sort_stepper(case_polygons(CASE), CASE['width'], CASE['height'])"
+        ),
+        banned=("scanviz.visibility.depth_sort", "projections_overlap", "convex_hull"),
+    )
+)
