@@ -841,11 +841,13 @@ class ActiveSurfaces(Event):
 class VisibleSpan(Event):
     """Span [x_start, x_end) of row `y`: the surfaces over it and the visible one (-1: background).
 
+    One event per span, or per piece of a span split by interpenetration.
+
     ``depths`` are the surfaces' depths at the span's first sample, in the
     order of ``surfaces``. ``reused`` is True when the row below had the same
     span with the same surfaces, so its decision was reused (coherence).
-    ``split_at`` is where two surfaces cross inside the span (interpenetration),
-    the x at which the span was split, or None.
+    ``split_at``, on each piece after the first, is where its plane crosses the
+    previous piece's (between x_start - 1 and x_start); None otherwise.
     """
 
     kind: ClassVar[str] = "visible_span"

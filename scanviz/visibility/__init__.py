@@ -13,6 +13,7 @@ from .bsp import BSP, BspStats, BspTree, BspTreeNode
 from .depth_sort import DepthSort, DepthSortStats
 from .interface import ALGORITHMS, Decision, Visibility, VisibilityResult, ZBuffer, algorithm, solve
 from .painter import Painter
+from .scanline import Scanline, ScanlineStats
 from .surfaces import PLANE_TOLERANCE, Cut, Piece, Surfaces
 from .warnock import Quadtree, Warnock, WarnockStats
 from .zbuffer import ScreenPolygons, ZBufferResult, ZBufferStats, zbuffer
@@ -31,6 +32,8 @@ __all__ = [
     "DepthSortStats",
     "Painter",
     "Piece",
+    "Scanline",
+    "ScanlineStats",
     "ScreenPolygons",
     "Surfaces",
     "Visibility",
