@@ -56,6 +56,7 @@ STAT_FIELDS = 7
 # under (front to back: only empty samples), or write where the decided id is this polygon.
 DEPTH, OVER, UNDER, TARGET = range(4)
 NO_CUTS = np.zeros((0, 11))
+WHOLE = 2**62  # rows -WHOLE..WHOLE: a whole polygon, no row left out
 
 
 @njit(cache=True, inline="always")
@@ -201,13 +202,15 @@ def start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx):
 @njit(cache=True)
 def draw_polygon(
     polygon, units, offsets, scale, plane, channels, buffers, depth, ids, values, stats, mode, cuts,
-    target,
+    target, rows,
 ):  # fmt: skip
     """Scan polygon `polygon` (rows offsets[0]:offsets[1] of `units`) into the buffers.
 
     `plane` is (x_first, y_first, z_first, dzdx, dzdy); `buffers` the scratch
     arrays (aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx);
-    `mode`, `cuts` and `target` choose the per-sample test (`writes`).
+    `mode`, `cuts` and `target` choose the per-sample test (`writes`);
+    only rows rows[0] <= y < rows[1] are drawn (a piece's rows: the others
+    are walked, so that every value is stepped as the z-buffer steps it).
     """
     height, width = depth.shape
     x_first, y_first, z_first, dzdx, dzdy = plane
@@ -217,7 +220,7 @@ def draw_polygon(
     n_active = entering = 0
     z_row, z_carry, previous_row = 0.0, 0.0, -2  # no row yet
     y = table[ROW_START, 0] if count else height
-    while y < height and (n_active > 0 or entering < count):
+    while y < min(height, rows[1]) and (n_active > 0 or entering < count):
         if n_active == 0 and table[ROW_START, entering] > y:
             y = table[ROW_START, entering]  # skip empty rows
         n_active = retire_and_step(aet, xs, edge_of, n_active, y, edge_value, edge_dvdy)
@@ -228,12 +231,15 @@ def draw_polygon(
             n_active += 1
             entering += 1
         sort_by_x(aet, xs, edge_of, n_active)
-        stats[ROWS] += 1
         if y == previous_row + 1:  # between rows: z_row += dz/dy
             z_row, z_carry = compensated_step(z_row, z_carry, dzdy)
         else:
             z_row, z_carry = plane_depth(x_first, y_first, z_first, dzdx, dzdy, 0.0, y), 0.0
         previous_row = y
+        if y < rows[0]:
+            y += 1
+            continue
+        stats[ROWS] += 1
         winding = 0
         for i in range(n_active - 1):  # span: nonzero-winding runs between crossings
             winding += aet[WINDING, i]
@@ -261,21 +267,24 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     order = np.arange(offsets.shape[0] - 1)
     no_cuts = np.zeros(order.shape[0] + 1, np.int64)
     target = np.zeros((1, 1), np.int64)
+    whole = np.empty((order.shape[0], 2), np.int64)
+    whole[:, 0], whole[:, 1] = -WHOLE, WHOLE
     return paint_pieces(
         units, positions, z, channels, offsets, scale, width, height, value_count,
-        order, no_cuts, NO_CUTS, DEPTH, target,
+        order, no_cuts, NO_CUTS, whole, DEPTH, target,
     )  # fmt: skip
 
 
 @njit(cache=True)
 def paint_pieces(
     units, positions, z, channels, offsets, scale, width, height, value_count,
-    piece_polygon, cut_starts, cut_rows, mode, target,
+    piece_polygon, cut_starts, cut_rows, piece_rows, mode, target,
 ):  # fmt: skip
     """Draw pieces i = 0, 1, ... of polygons piece_polygon[i] with the per-sample test `mode`.
 
     Piece i keeps the samples of its polygon on the kept side of its cuts,
-    rows cut_starts[i]:cut_starts[i + 1] of `cut_rows` (see `keeps`);
+    rows cut_starts[i]:cut_starts[i + 1] of `cut_rows` (see `keeps`), on
+    sample rows piece_rows[i, 0] <= y < piece_rows[i, 1] (its extent);
     `target` (H, W) is the decided polygon per sample for mode TARGET. The
     other arguments and the result are those of `zbuffer_polygons`; DRAWN
     and SKIPPED count pieces.
@@ -314,7 +323,7 @@ def paint_pieces(
         cuts = cut_rows[cut_starts[i] : cut_starts[i + 1]]
         draw_polygon(
             p, units, offsets[p : p + 2], scale, plane, channels, buffers, depth, ids, values,
-            stats, mode, cuts, target,
+            stats, mode, cuts, target, (piece_rows[i, 0], piece_rows[i, 1]),
         )  # fmt: skip
         stats[DRAWN] += stats[FRAGMENTS] > fragments
     return depth, ids, values, stats

@@ -80,7 +80,7 @@ def _paint_compiled(surfaces, pieces, mode, target) -> Painted:
         surfaces.units, surfaces.units / surfaces.scale, polygons.z, surfaces.channels,
         polygons.offsets, surfaces.scale, surfaces.width, surfaces.height, polygons.value_count,
         np.array([piece.polygon for piece in pieces], np.int64), starts, rows,
-        _KERNEL_MODE[mode], np.zeros((1, 1), np.int64) if target is None else target,
+        np.array([piece.rows() for piece in pieces], np.int64).reshape(-1, 2), _KERNEL_MODE[mode], np.zeros((1, 1), np.int64) if target is None else target,
     )  # fmt: skip
     return Painted(depth, ids, values, _stats(counts, len(pieces), "compiled"))
 
@@ -117,9 +117,14 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
             counts[kernels.SKIPPED] += 1
             continue
         fragments = counts[kernels.FRAGMENTS]
+        y_low, y_high = piece.rows()
         for y, spans in interpolate_rows(
             snapped, plane, surfaces.channels[first:stop], width, height
         ):
+            if y >= y_high:
+                break
+            if y < y_low:
+                continue
             counts[kernels.ROWS] += 1
             counts[kernels.SPANS] += len(spans)
             traced = trace is not None and trace.wants("pixel_painted", polygon=p, y=y)

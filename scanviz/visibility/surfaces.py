@@ -71,6 +71,17 @@ class Piece:
     def zmax(self) -> float:
         return float(self.vertices[:, 2].max())
 
+    def rows(self) -> tuple[int, int]:
+        """The sample rows [low, high) painting visits: all for a whole polygon, else its extent.
+
+        A piece's vertices are a float clip of its samples' region, so the
+        extent is widened by a row each way; the cuts decide each sample.
+        """
+        if not self.cuts or not len(self.vertices):
+            return -(2**62), 2**62  # kernels.WHOLE; and an empty clip leaves it to the cuts
+        ys = self.vertices[:, 1]
+        return int(np.floor(ys.min())) - 1, int(np.ceil(ys.max())) + 2
+
     def extent(self) -> tuple[float, float, float, float]:
         """(x_min, x_max, y_min, y_max) of its vertices, sample frame."""
         xs, ys = self.vertices[:, 0], self.vertices[:, 1]
