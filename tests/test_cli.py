@@ -370,6 +370,8 @@ def test_issue9_grade_writes_the_reports_and_says_where(capsys, monkeypatch, tmp
         ]
 
     key = Key()
+    import scanviz.exercises.report  # noqa: F401 -- imports the real key module before it is faked
+
     fake_module(monkeypatch, "scanviz.exercises.key", load_key=lambda path: key)
     fake_module(monkeypatch, "scanviz.exercises.grading", grade_submissions=grade_submissions)
     out = tmp_path / "graded"
