@@ -45,6 +45,7 @@ test: lint $(NUMBA_STAMP) chromium
 bench: $(STAMP) $(NUMBA_STAMP)
 	$(BIN)/python -m scanviz bench raster
 	$(BIN)/python -m scanviz bench render
+	$(BIN)/python -m scanviz bench visibility
 
 clean:
 	rm -rf $(VENV) .pytest_cache .hypothesis

@@ -24,6 +24,8 @@ from .limits import check_memory
 
 IMAGE_FORMATS = {".png": "png", ".jpg": "jpeg", ".jpeg": "jpeg", ".tif": "tiff", ".tiff": "tiff"}
 """Output file extensions (any case) and their formats: PNG by matplotlib, the rest by Pillow."""
+# `render --visibility`: the opaque algorithms (names fixed by the issue), then the a-buffer's two.
+VISIBILITY_NAMES = ("zbuffer", "painter", "depth_sort", "bsp", "scanline", "warnock", "abuffer", "flawed")  # fmt: skip
 _EXPORT_BYTES_PER_PIXEL = 40  # float RGBA and 8-bit copies while matplotlib encodes the image
 _SHOWN = 60  # longest argument quoted whole in a message
 
@@ -63,6 +65,34 @@ def _at_least_one(text: str) -> int:
     value = _integer(text)
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be >= 1; got {value}")
+    return value
+
+
+def _counts(text: str) -> tuple[int, ...]:
+    """A comma-separated list of integers >= 1."""
+    parts = [part.strip() for part in text.split(",")]
+    if not all(parts):
+        raise argparse.ArgumentTypeError(
+            f"must be integers >= 1 separated by commas; got {_shown(text)}"
+        )
+    return tuple(_at_least_one(part) for part in parts)
+
+
+def _names(text: str) -> tuple[str, ...]:
+    """A comma-separated list of names."""
+    names = tuple(part.strip() for part in text.split(",") if part.strip())
+    if not names:
+        raise argparse.ArgumentTypeError("must name at least one")
+    return names
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0 < value < math.inf:
+        raise argparse.ArgumentTypeError(f"must be a number of seconds > 0; got {_shown(text)}")
     return value
 
 
@@ -176,10 +206,19 @@ def _cmd_fill(args: argparse.Namespace) -> None:
     print(f"{args.output}: {width}x{height}, {int(result.mask.sum())} samples covered")
 
 
+_VISIBILITY_OPTIONS = ("sizes", "width", "height", "repeat", "algorithms", "budget")
+
+
 def _cmd_bench(args: argparse.Namespace) -> None:
     from .bench import run
 
-    run(args.suite, quick=args.quick, plot=args.plot)
+    options = {name: getattr(args, name) for name in _VISIBILITY_OPTIONS}
+    if args.suite != "visibility":
+        given = [f"--{name}" for name, value in options.items() if value is not None]
+        if given:
+            raise ValueError(f"{', '.join(given)}: options of 'bench visibility' only")
+        options = {}
+    run(args.suite, quick=args.quick, plot=args.plot, **options)
 
 
 def _load(source: str, width: int, height: int):
@@ -396,7 +435,7 @@ def _add_render_options(render: argparse.ArgumentParser) -> None:
     render.add_argument("--width", type=_at_least_one, default=512, help="pixels, >= 1")
     render.add_argument("--height", type=_at_least_one, default=512, help="pixels, >= 1")
     render.add_argument("--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch"])
-    render.add_argument("--visibility", default="zbuffer", choices=["zbuffer", "abuffer", "flawed"])
+    render.add_argument("--visibility", default="zbuffer", choices=VISIBILITY_NAMES)
     render.add_argument("--edges", action="store_true", help="draw feature edges")
     render.add_argument("--mask", default="8x8", choices=["4x4", "8x4", "8x8"], help="a-buffer")
     render.add_argument("--weights", default="area", choices=["area", "mask"], help="a-buffer")
@@ -420,6 +459,25 @@ def _add_render_options(render: argparse.ArgumentParser) -> None:
     )
     render.add_argument("--sample", default="corner", choices=["corner", "center"])
     render.add_argument("--plan", action="store_true", help="print which stages run and why")
+
+
+def _add_visibility_bench_options(bench: argparse.ArgumentParser) -> None:
+    bench.add_argument(
+        "--sizes", type=_counts, metavar="N,N,...", help="visibility: random triangles per scene"
+    )
+    count = {"type": _at_least_one, "metavar": "N"}
+    bench.add_argument("--width", **count, help="visibility: raster width (256)")
+    bench.add_argument("--height", **count, help="visibility: raster height (256)")
+    bench.add_argument("--repeat", **count, help="visibility: runs per scene (3)")
+    bench.add_argument(
+        "--algorithms",
+        type=_names,
+        metavar="NAME,NAME,...",
+        help="visibility: which algorithms besides the z-buffer (default: all)",
+    )
+    bench.add_argument(
+        "--budget", type=_seconds, metavar="SECONDS", help="visibility: time per algorithm (30)"
+    )
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -449,8 +507,12 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("suite", choices=SUITES)
     bench.add_argument("--quick", action="store_true", help="smaller scenes, for a smoke test")
     bench.add_argument(
-        "--plot", default="coverage.png", metavar="PATH", help="coverage: error-vs-time plot file"
+        "--plot",
+        metavar="PATH",
+        help="coverage: error-vs-time plot file (default coverage.png); "
+        "visibility: time-vs-polygons plot file (default: none)",
     )
+    _add_visibility_bench_options(bench)
     bench.set_defaults(run=_cmd_bench)
     conformance = commands.add_parser(
         "conformance", help="the stress suite: PASS/FAIL per category"

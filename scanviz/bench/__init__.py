@@ -2,7 +2,8 @@
 
 Each suite prints a table of run times (and, where it applies, errors) and
 measures installed peers (OpenCV, ...) on the same scenes in the same run;
-``grading`` prints how many students a class is graded at per minute.
+``grading`` prints how many students a class is graded at per minute;
+``visibility`` times every visibility algorithm against the z-buffer.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ import statistics
 import time
 from collections.abc import Callable
 
-SUITES = ("raster", "render", "coverage", "grading")
+SUITES = ("raster", "render", "coverage", "grading", "visibility")
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -26,8 +27,12 @@ def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float 
     return statistics.median(times)
 
 
-def run(suite: str, *, quick: bool = False, plot: str | None = "coverage.png") -> None:
-    """Run one benchmark suite and print its table (`plot`: where "coverage" saves its plot)."""
+def run(suite: str, *, quick: bool = False, plot: str | None = None, **options: object) -> None:
+    """Run one benchmark suite and print its table.
+
+    `plot` is where "coverage" (default coverage.png) or "visibility"
+    (default: no plot) saves its plot; `options` go to `run_visibility`.
+    """
     if suite == "raster":
         from .raster import run_raster
 
@@ -39,10 +44,14 @@ def run(suite: str, *, quick: bool = False, plot: str | None = "coverage.png") -
     elif suite == "coverage":
         from .coverage import run_coverage
 
-        run_coverage(quick=quick, plot=plot)
+        run_coverage(quick=quick, plot=plot or "coverage.png")
     elif suite == "grading":
         from .grading import run_grading
 
         run_grading(quick=quick)
+    elif suite == "visibility":
+        from .visibility import run_visibility
+
+        run_visibility(quick=quick, plot=plot, **options)
     else:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")

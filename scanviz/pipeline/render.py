@@ -116,8 +116,8 @@ def render(
     """
     width, height = check_raster_size(width, height)
     check_choice("shading", shading, SHADINGS)
-    if isinstance(visibility, str):
-        check_choice("visibility", visibility, VISIBILITIES)
+    if isinstance(visibility, str):  # ALGORITHMS now: one registered after import counts too
+        check_choice("visibility", visibility, (*ALGORITHMS, *ANTIALIASED))
     chosen = None if visibility in ANTIALIASED else algorithm(visibility)
     name = visibility if chosen is None else chosen.name
     check_choice("sample", sample, SAMPLE_MODES)

@@ -28,6 +28,7 @@ on it.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -160,10 +161,16 @@ class Surfaces:
     def scale(self) -> int:
         return 2 ** (self.bits + 1)
 
+    @cached_property
+    def xyz(self) -> np.ndarray:
+        """(M, 3) x, y (sample frame, snapped) and z of every vertex, read-only."""
+        xyz = np.column_stack([self.positions, self.polygons.z])
+        xyz.setflags(write=False)
+        return xyz
+
     def vertices(self, p: int) -> np.ndarray:
         """(n, 3) x, y (sample frame, snapped) and z of polygon p's vertices."""
-        rows = slice(self.polygons.offsets[p], self.polygons.offsets[p + 1])
-        return np.column_stack([self.positions[rows], self.polygons.z[rows]])
+        return self.xyz[self.polygons.offsets[p] : self.polygons.offsets[p + 1]]
 
     def pieces(self) -> list[Piece]:
         """One whole piece per drawn polygon, in input order."""
