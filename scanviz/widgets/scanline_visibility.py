@@ -1,0 +1,278 @@
+"""Step through scanline visibility one span at a time: the xz slice of the scanline, the AST, the SST.
+
+`ScanlineVisibilityView` shows, after each step of a traced
+``solve("scanline", ...)``, the current scanline's xz slice (x across, depth
+up: each active surface's depth along the row, the spans as bands, the
+visible surface drawn thick in its color, reused spans in green, splits as
+dashed lines), the AST and SST as tables, and the image decided so far
+beside the final image and the z-buffer's. `scanline_visibility_stepper`
+solves screen polygons with a `Recorder` and wraps the view in a `Stepper`.
+"""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.colors import to_rgb
+from matplotlib.patches import Rectangle
+
+from ..trace import Recorder, Trace
+from ..visibility import solve, zbuffer
+from ..visibility.scanline import Scanline
+from ._common import html_table, new_figure, say, status_label
+from .stepper import Stepper, figure_widget, refresh_figure
+from .visibility import BACKGROUND, PALETTE
+
+SCANLINE_KINDS = ("surface_table_built", "active_surfaces", "visible_span")
+COLORS = np.array([to_rgb(c) for c in PALETTE])  # polygon p is COLORS[p % 9], as in the comparison
+BACKGROUND_COLOR = np.array(to_rgb(BACKGROUND))
+BAND_COLORS = {"decided": (1.0, 0.91, 0.66, 0.6), "reused": (0.70, 0.92, 0.70, 0.6)}
+SPAN_COLUMNS = (
+    "x_start",
+    "x_end",
+    "surfaces",
+    "depths at x_start",
+    "visible",
+    "reused",
+    "split at",
+)
+
+
+def _band_color(span) -> tuple[float, ...]:
+    """Yellow for a span decided on its row, green for one reused, clear for the background."""
+    if not span.surfaces:
+        return (1.0, 1.0, 1.0, 0.0)
+    return BAND_COLORS["reused" if span.reused else "decided"]
+
+
+def polygon_colors(ids: np.ndarray) -> np.ndarray:
+    """(H, W, 3) colors of an (H, W) array of polygon ids (-1: background, white)."""
+    image = COLORS[np.maximum(ids, 0) % len(COLORS)]
+    image[ids < 0] = BACKGROUND_COLOR
+    return image
+
+
+class ScanlineVisibilityView:
+    """The xz slice of the current scanline, the AST and SST, and the image decided so far.
+
+    Parameters
+    ----------
+    trace : Trace
+        ``surface_table_built``, ``active_surfaces`` and ``visible_span`` events
+        of a traced ``solve("scanline", ...)``.
+    result : VisibilityResult
+        The same solve: the final ids, and in ``detail.planes`` the surfaces'
+        depth planes, which the slice draws between the recorded depths.
+    zbuffer_result : ZBufferResult or VisibilityResult
+        The z-buffer's solve of the same polygons, for comparison.
+    note : str, optional
+        Shown above the figure (e.g. that the trace was cut).
+
+    Attributes
+    ----------
+    widget : ipywidgets.VBox
+    row : int or None
+        The scanline shown (the last ``active_surfaces`` reached).
+    surface_lines : matplotlib LineCollection
+        One segment per surface and span of the row: its depth along the span.
+    visible_lines : matplotlib LineCollection
+        The visible surface over each span decided so far (thick, its color).
+    bands : matplotlib PolyCollection
+        One band per span decided so far: yellow decided, green reused.
+    splits : matplotlib LineCollection
+        Dashed verticals where an interpenetration split a span.
+    decided_image : matplotlib AxesImage
+        The ids decided by the spans so far, as colors.
+    ast, sst, spans : ipywidgets.HTML
+        The active surface table, the sorted surface table, the row's spans.
+    """
+
+    def __init__(self, trace: Trace, result, zbuffer_result, *, note: str = "") -> None:
+        self.trace, self.result = trace, result
+        height, width = result.polygon.shape
+        self._planes = result.detail.planes
+        self._spans = [(i, e) for i, e in enumerate(trace) if e.kind == "visible_span"]
+        self._rows = [(i, e) for i, e in enumerate(trace) if e.kind == "active_surfaces"]
+        self._table = next((e for e in trace if e.kind == "surface_table_built"), None)
+        depths = [z for _, e in self._spans for z in e.depths]
+        low, high = (min(depths), max(depths)) if depths else (0.0, 1.0)
+        pad = 0.05 * (high - low) or 0.05
+
+        fig, axes = new_figure(
+            4, width=13.0, height=3.6, gridspec_kw={"width_ratios": [2, 1, 1, 1]}
+        )
+        ax_slice, ax_decided, ax_final, ax_zbuffer = axes
+        ax_slice.set_xlim(0, width)
+        ax_slice.set_ylim(low - pad, high + pad)
+        ax_slice.set_xlabel("x")
+        ax_slice.set_ylabel("z (the viewer is below: smaller is nearer)")
+        self.bands = PolyCollection([], edgecolors="0.55", linewidths=0.6, zorder=1)
+        self.surface_lines = LineCollection([], linewidths=1.0, zorder=2)
+        self.visible_lines = LineCollection([], linewidths=3.5, zorder=3)
+        self.splits = LineCollection([], colors="crimson", linestyles="--", linewidths=1, zorder=4)
+        for artist in (self.bands, self.surface_lines, self.visible_lines, self.splits):
+            ax_slice.add_collection(artist)
+        self.current_band = Rectangle(
+            (0, low - pad), 0, high - low + 2 * pad, fill=False, ec="orange", lw=2, visible=False
+        )
+        ax_slice.add_patch(self.current_band)
+        extent = (0, width, 0, height)
+        empty = polygon_colors(np.full((height, width), -1))
+        self.decided_image = ax_decided.imshow(
+            empty, origin="lower", extent=extent, interpolation="nearest"
+        )
+        self.scanline = ax_decided.axhline(0, color="orange", lw=1.5, visible=False)
+        for ax, ids in ((ax_final, result.polygon), (ax_zbuffer, zbuffer_result.polygon)):
+            ax.imshow(polygon_colors(ids), origin="lower", extent=extent, interpolation="nearest")
+        titles = ("xz slice of the scanline", "decided so far", "scanline: final", "z-buffer")
+        for ax, title in zip(axes, titles, strict=True):
+            ax.set_title(title, fontsize=10)
+        fig.tight_layout()
+        self.figure, self.axes = fig, axes
+
+        self.ast, self.sst, self.spans = widgets.HTML(), widgets.HTML(), widgets.HTML()
+        self.note = status_label()
+        say(self.note, note)
+        self._canvas = figure_widget(fig)
+        tables = widgets.HBox([self.ast, self.sst, self.spans])
+        self.widget = widgets.VBox([self.note, self._canvas, tables])
+        self.row = None
+        self.step = 0
+        self.show(0)
+
+    def decided(self, step: int) -> np.ndarray:
+        """(H, W) int64 ids the first `step` events decided (-1: not yet, or background)."""
+        ids = np.full(self.result.polygon.shape, -1, np.int64)
+        for index, e in self._spans:
+            if index >= step:
+                break
+            ids[e.y, e.x_start : e.x_end] = e.visible
+        return ids
+
+    def show(self, step: int) -> None:
+        """Show the scanline, its spans and the tables after the first `step` events."""
+        self.step = int(step)
+        rows = [e for index, e in self._rows if index < self.step]
+        row = rows[-1] if rows else None
+        self.row = None if row is None else row.y
+        here = [(i, e) for i, e in self._spans if row is not None and e.y == row.y]
+        done = [e for i, e in here if i < self.step]
+        self._draw_slice(here, done)
+        self.decided_image.set_data(polygon_colors(self.decided(self.step)))
+        self.scanline.set_visible(row is not None)
+        if row is not None:
+            self.scanline.set_ydata([row.y + 0.5, row.y + 0.5])
+        self._show_tables(row, here)
+        refresh_figure(self.figure, self._canvas)
+
+    def _draw_slice(self, here, done) -> None:
+        """Every surface's depth over the row's spans; the bands, visible surface, splits so far."""
+        segments, colors = [], []
+        for _, e in here:
+            for p, z in zip(e.surfaces, e.depths, strict=True):
+                segments.append(self._segment(p, z, e.x_start, e.x_end))
+                colors.append((*COLORS[p % len(COLORS)], 0.45))
+        self.surface_lines.set_segments(segments)
+        self.surface_lines.set_colors(colors)
+        visible = [e for e in done if e.visible >= 0]
+        self.visible_lines.set_segments([self._visible_segment(e) for e in visible])
+        self.visible_lines.set_colors([COLORS[e.visible % len(COLORS)] for e in visible])
+        low, high = self.axes[0].get_ylim()
+        self.bands.set_verts(
+            [[(e.x_start, low), (e.x_end, low), (e.x_end, high), (e.x_start, high)] for e in done]
+        )
+        self.bands.set_facecolors([_band_color(e) for e in done])
+        self.splits.set_segments(
+            [[(e.split_at, low), (e.split_at, high)] for e in done if e.split_at is not None]
+        )
+        current = done[-1] if done and here and here[len(done) - 1][0] == self.step - 1 else None
+        self.current_band.set_visible(current is not None)
+        if current is not None:
+            self.current_band.set_x(current.x_start)
+            self.current_band.set_width(current.x_end - current.x_start)
+
+    def _segment(self, p: int, z: float, x_start: int, x_end: int) -> list[tuple[float, float]]:
+        """Surface p's depth from sample x_start (recorded: z) to x_end along its plane's dz/dx."""
+        return [(x_start, z), (x_end, z + self._planes[p, 3] * (x_end - x_start))]
+
+    def _visible_segment(self, span) -> list[tuple[float, float]]:
+        depth = span.depths[span.surfaces.index(span.visible)]
+        return self._segment(span.visible, depth, span.x_start, span.x_end)
+
+    def _show_tables(self, row, here) -> None:
+        """The AST of the row, the SST (pending, active, exhausted) and the row's spans."""
+        if row is None:
+            self.ast.value = "<i>no scanline yet</i>"
+        else:
+            self.ast.value = f"<b>AST, row y = {row.y}</b> (sorted on x)" + html_table(
+                ("active", "entered", "exhausted"), [(row.active, row.entered, row.exhausted)]
+            )
+        records = self._table.surfaces if self._table is not None and self.step > 0 else ()
+        self.sst.value = "<b>SST</b> (by first row)" + html_table(
+            ("polygon", "y_start", "y_end"),
+            [(r.polygon, r.y_start, r.y_end) for r in records],
+            states=[_surface_state(r, row) for r in records],
+        )
+        rows = [
+            (
+                e.x_start,
+                e.x_end,
+                e.surfaces,
+                e.depths,
+                e.visible,
+                "yes" if e.reused else "",
+                e.split_at,
+            )
+            for _, e in here
+        ]
+        states = [
+            "current" if i == self.step - 1 else "done" if i < self.step else "pending"
+            for i, _ in here
+        ]
+        self.spans.value = "<b>spans of the row</b>" + html_table(SPAN_COLUMNS, rows, states=states)
+
+
+def _surface_state(record, row) -> str:
+    """An SST entry's state at `row`: not entered yet, in the AST, or exhausted."""
+    if row is None or record.y_start > row.y:
+        return "pending"
+    return "current" if record.polygon in row.active else "done"
+
+
+def scanline_visibility_stepper(polygons, width: int, height: int, **options) -> Stepper:
+    """Solve `polygons` with scanline visibility, traced, and step through it span by span.
+
+    Parameters
+    ----------
+    polygons : ScreenPolygons
+        E.g. one of `scanviz.visibility.examples`.
+    width, height : int
+        Raster size.
+    **options
+        ``coherence`` (of `Scanline`); ``sample``, ``subpixel_bits``,
+        ``perspective`` (of `solve`).
+
+    Returns
+    -------
+    Stepper
+        ``.views[0]`` is the `ScanlineVisibilityView`. A trace longer than
+        ``Stepper.MAX_STEPS`` is cut, and the view says so.
+
+    Examples
+    --------
+    >>> from scanviz.visibility import examples
+    >>> stepper = scanline_visibility_stepper(examples.slides_painter(), 16, 12)
+    >>> stepper.slider.value = stepper.slider.max
+    >>> stepper.views[0].row, stepper.views[0].spans.value.count("<tr") - 1
+    (9, 3)
+    """
+    chosen = Scanline(coherence=options.pop("coherence", True))
+    result = solve(chosen, polygons, width, height, **options, trace=Recorder(kinds=SCANLINE_KINDS))
+    reference = zbuffer(polygons, width, height, **options)
+    trace, note = result.trace, ""
+    if len(trace) > Stepper.MAX_STEPS:
+        note = f"The trace holds {len(trace)} events: showing the first {Stepper.MAX_STEPS}."
+        trace = trace[: Stepper.MAX_STEPS]
+    view = ScanlineVisibilityView(trace, result, reference, note=note)
+    return Stepper(trace, [view], title="scanline visibility: one span per step")
