@@ -1,36 +1,54 @@
 """Views of traces for notebooks. They draw what the core computed; they never compute it."""
 
 from .abuffer import ABufferInspector, FragmentInsertionView, PackerView
+from .bsp import BspView, bsp_stepper
 from .clip import plot_clip
+from .depth_sort import DepthSortView, PainterView, depth_sort_stepper, painter_stepper
 from .editor import PolygonEditor
 from .lines import LineView, line_stepper
 from .model import StepModel
 from .scan import ScanConversionView, scan_conversion_stepper
+from .scanline_visibility import ScanlineVisibilityView, scanline_visibility_stepper
 from .static import plot_scan
 from .stepper import Stepper, View, figure_widget, redraw_time, refresh_figure
 from .viewing import ViewingPipelineView
+from .visibility import algorithm_names, compare_visibility, taxonomy_table
+from .warnock import WarnockView, warnock_stepper
 from .zbuffer import InterpolationView, ZBufferView, interpolation_stepper, zbuffer_stepper
 
 __all__ = [
     "ABufferInspector",
+    "BspView",
+    "DepthSortView",
     "FragmentInsertionView",
     "InterpolationView",
     "LineView",
     "PackerView",
+    "PainterView",
     "PolygonEditor",
     "ScanConversionView",
+    "ScanlineVisibilityView",
     "StepModel",
     "Stepper",
     "View",
     "ViewingPipelineView",
+    "WarnockView",
     "ZBufferView",
+    "algorithm_names",
+    "bsp_stepper",
+    "compare_visibility",
+    "depth_sort_stepper",
     "figure_widget",
     "interpolation_stepper",
     "line_stepper",
+    "painter_stepper",
     "plot_clip",
     "plot_scan",
     "redraw_time",
     "refresh_figure",
     "scan_conversion_stepper",
+    "scanline_visibility_stepper",
+    "taxonomy_table",
+    "warnock_stepper",
     "zbuffer_stepper",
 ]
