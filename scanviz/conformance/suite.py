@@ -1,7 +1,7 @@
 """The conformance suite: the table of categories, the runner and its one-line output.
 
-Each category is a small function returning an `Outcome`; they live in `raster_checks`, `input_checks`, `coverage_checks`
-and `pipeline_checks`; this module lists them, runs them and prints one line
+Each category is a small function returning an `Outcome`; they live in `raster_checks`, `input_checks`, `coverage_checks`,
+`pipeline_checks` and `visibility_checks`; this module lists them, runs them and prints one line
 each. Every category builds its cases from a seeded generator, runs the public
 entry points and compares them with an exact oracle (`scanviz.conformance.exact`)
 or with an invariant that must hold exactly. ``docs/conformance.md`` lists
@@ -30,6 +30,7 @@ from .raster_checks import (
     watertight_fans,
     winding_and_parity,
 )
+from .visibility_checks import visibility_vs_zbuffer
 
 CATEGORIES: dict[str, Callable[[np.random.Generator], Outcome]] = {
     "fill convention": fill_convention,
@@ -47,6 +48,7 @@ CATEGORIES: dict[str, Callable[[np.random.Generator], Outcome]] = {
     "interpolation": interpolation_vs_barycentric,
     "traced == compiled": traced_equals_compiled,
     "built-in scenes": builtin_scenes,
+    "visibility vs z-buffer": visibility_vs_zbuffer,
 }
 
 
