@@ -18,6 +18,9 @@ class _Silent:
     def update(self, n: int = 1) -> None:
         pass
 
+    def write(self, text: str) -> None:  # as tqdm.write: a line above the bar
+        print(text)
+
 
 @contextlib.contextmanager
 def progress(total: int, desc: str, *, threshold: int = 0, enabled: bool | None = None) -> Iterator:

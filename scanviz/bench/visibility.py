@@ -245,21 +245,21 @@ class _Bench:
             guess = predicted_seconds(history, count)
             over = over or spent + guess > self.budget
             if over:
-                print(
+                bar.write(
                     f"{name:<{self.column}}{scene.label:<17}{count:>9,}  over budget "
                     f"(predicted {guess:.3g} s per run, {spent:.3g} s spent)"
                 )
                 rows.append(row | {"over_budget": True, "predicted_s": guess})
             else:
-                rows.append(row | self.timed_row(name, index, self.budget - spent))
+                rows.append(row | self.timed_row(name, index, self.budget - spent, bar.write))
                 spent += rows[-1]["spent_s"]
                 if scene.random:
                     history.append((count, rows[-1]["ms"] / 1e3))
             bar.update(1)
         return rows
 
-    def timed_row(self, name: str, index: int, left: float) -> dict:
-        """Time `name` on scene `index` with `left` seconds of budget; print its line."""
+    def timed_row(self, name: str, index: int, left: float, say=print) -> dict:
+        """Time `name` on scene `index` with `left` seconds of budget; `say` its line."""
         scene, width, height = self.scenes[index], self.width, self.height
         times: list[float] = []
         while len(times) < self.repeat and (not times or sum(times) < left):
@@ -272,7 +272,7 @@ class _Bench:
         ratio = seconds / self.zbuffer_seconds.get(index, np.nan)
         agree, unique, agree_unique = agreement(result.polygon, *self.reference(index))
         count = scene.polygons.count
-        print(
+        say(
             f"{name:<{self.column}}{scene.label:<17}{count:>9,}{seconds * 1e3:>10.2f}"
             f"{count / seconds:>12,.0f}{ratio:>11.2f}{agree:>8.4f}{unique:>8.4f}{agree_unique:>13.6f}"
         )
