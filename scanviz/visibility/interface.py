@@ -25,14 +25,14 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
+from ..conventions import check_choice
 from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..trace import Recorder, Trace
 from ..trace.events import CutRecord, PaintOrder, PieceRecord
 from .paint import paint
 from .surfaces import Piece, Surfaces
-from .zbuffer import ScreenPolygons, ZBufferStats, zbuffer
+from .zbuffer import ScreenPolygons, ZBufferStats, check_arguments, zbuffer
 
 
 @dataclass(frozen=True)
@@ -131,13 +131,7 @@ def solve(
     `pixel_painted` per sample painted.
     """
     chosen = algorithm(visibility)
-    if not isinstance(polygons, ScreenPolygons):
-        raise TypeError(f"'polygons' must be a ScreenPolygons; got {type(polygons).__name__}")
-    width, height = check_raster_size(width, height)
-    check_choice("sample", sample, SAMPLE_MODES)
-    check_subpixel_bits(subpixel_bits)
-    if not isinstance(perspective, bool | np.bool_):
-        raise TypeError(f"'perspective' must be a bool; got {perspective!r}")
+    width, height, _ = check_arguments(polygons, width, height, sample, subpixel_bits, perspective)
     tracer = as_tracer(trace)
     options = {"sample": sample, "subpixel_bits": subpixel_bits, "perspective": bool(perspective)}
     if isinstance(chosen, ZBuffer):

@@ -325,13 +325,9 @@ def zbuffer(
     >>> float(result.depth[3, 3]), result.stats.path  # z = 15 - x - 5y/3 there
     (7.0, 'compiled')
     """
-    if not isinstance(polygons, ScreenPolygons):
-        raise TypeError(f"'polygons' must be a ScreenPolygons; got {type(polygons).__name__}")
-    width, height = check_raster_size(width, height)
-    check_choice("sample", sample, SAMPLE_MODES)
-    bits = check_subpixel_bits(subpixel_bits)
-    if not isinstance(perspective, bool | np.bool_):
-        raise TypeError(f"'perspective' must be a bool; got {perspective!r}")
+    width, height, bits = check_arguments(
+        polygons, width, height, sample, subpixel_bits, perspective
+    )
     tracer = as_tracer(trace)
     check_memory(
         width * height * 8 * (2 + polygons.value_count),
@@ -364,6 +360,18 @@ def zbuffer(
     )
     recorded = tracer.trace() if isinstance(tracer, Recorder) else None
     return ZBufferResult(result.depth, result.polygon, result.values, result.stats, recorded)
+
+
+def check_arguments(polygons, width, height, sample, subpixel_bits, perspective):
+    """(width, height, bits) once the arguments `zbuffer` and `solve` share are checked."""
+    if not isinstance(polygons, ScreenPolygons):
+        raise TypeError(f"'polygons' must be a ScreenPolygons; got {type(polygons).__name__}")
+    width, height = check_raster_size(width, height)
+    check_choice("sample", sample, SAMPLE_MODES)
+    bits = check_subpixel_bits(subpixel_bits)
+    if not isinstance(perspective, bool | np.bool_):
+        raise TypeError(f"'perspective' must be a bool; got {perspective!r}")
+    return width, height, bits
 
 
 def zbuffer_reference(
