@@ -22,27 +22,15 @@ from ..visibility import solve, zbuffer
 from ..visibility.bsp import BSP
 from ._common import html_table, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
+from .visibility import outline_samples, polygon_color, polygon_colors
 
 STEP_KINDS = ("bsp_node", "polygon_split", "bsp_visited")
 TRACE_KINDS = (*STEP_KINDS, "paint_order", "pixel_painted")
-BACKGROUND = np.array([1.0, 1.0, 1.0])
-CURRENT, PAINTED, BUILT, PENDING = "#ff9f1c", "#9bc53d", "#ffffff", "#eeeeee"
-
-
-def polygon_color(polygon: int) -> np.ndarray:
-    """The color polygon `polygon` has in every panel (tab10, by id)."""
-    import matplotlib
-
-    return np.array(matplotlib.colormaps["tab10"](polygon % 10)[:3])
-
-
-def id_image(polygon: np.ndarray) -> np.ndarray:
-    """(H, W, 3) colors of a buffer of polygon ids (-1: background)."""
-    image = np.empty((*polygon.shape, 3))
-    image[...] = BACKGROUND
-    for p in np.unique(polygon[polygon >= 0]):
-        image[polygon == p] = polygon_color(int(p))
-    return image
+# Boxes: filled by node state (current as in the tables), edged in their polygon's color.
+CURRENT, PAINTED, BUILT, PENDING = "#ffe9a8", "#9bc53d", "#ffffff", "#eeeeee"
+TREE_EDGE = "0.35"  # grey, not red: red marks samples that differ from the z-buffer
+EDGE_STYLES = {"front": "-", "back": "--"}
+LABEL_BOX = {"fc": "white", "ec": "none", "alpha": 0.8, "pad": 1}  # labels stay legible over lines
 
 
 def tree_layout(tree) -> dict[int, tuple[float, float]]:
@@ -127,11 +115,13 @@ class BspView:
         self._draw_tree(ax_tree)
         self._draw_partition(ax_part)
         extent = (-0.5, self.width - 0.5, -0.5, self.height - 0.5)  # pixel squares on samples
-        blank = id_image(np.full((self.height, self.width), -1))
+        blank = polygon_colors(np.full((self.height, self.width), -1))
         self.so_far = ax_now.imshow(blank, origin="lower", extent=extent, interpolation="nearest")
+        wrong = self.result.polygon != zbuffer_result.polygon
         for ax, ids in ((ax_final, self.result.polygon), (ax_z, zbuffer_result.polygon)):
-            ax.imshow(id_image(ids), origin="lower", extent=extent, interpolation="nearest")
-        titles = ("painted so far", "BSP: final", "z-buffer")
+            ax.imshow(polygon_colors(ids), origin="lower", extent=extent, interpolation="nearest")
+            outline_samples(ax, wrong, offset=-0.5)
+        titles = ("painted so far", "BSP: final", "z-buffer (red: BSP differs)")
         for ax, title in zip((ax_now, ax_final, ax_z), titles, strict=True):
             ax.set_title(title, fontsize=10)
         self.figure, self.axes = fig, (ax_tree, ax_part, ax_now, ax_final, ax_z)
@@ -142,21 +132,35 @@ class BspView:
         self.node_boxes = {}
         for node in self.tree.nodes:
             x, y = places[node.node]
-            for side, color in (("front", "tab:blue"), ("back", "tab:red")):
+            for side, style in EDGE_STYLES.items():
                 child = getattr(node, side)
                 if child >= 0:
                     cx, cy = places[child]
-                    ax.plot([x, cx], [y, cy], color=color, lw=1.2, zorder=1)
-                    ax.text((x + cx) / 2, (y + cy) / 2, side, color=color, fontsize=7, ha="center")
+                    ax.plot([x, cx], [y, cy], color=TREE_EDGE, ls=style, lw=1.2, zorder=1)
+                    ax.text(
+                        (x + cx) / 2,
+                        (y + cy) / 2,
+                        side,
+                        color=TREE_EDGE,
+                        fontsize=8,
+                        ha="center",
+                        va="center",
+                        bbox=LABEL_BOX,
+                    )
             self.node_boxes[node.node] = ax.text(
                 x,
                 y,
                 ", ".join(node.pieces),
                 ha="center",
                 va="center",
-                fontsize=9,
+                fontsize=11,
                 zorder=2,
-                bbox={"boxstyle": "round", "fc": PENDING, "ec": polygon_color(node.polygon)},
+                bbox={
+                    "boxstyle": "round",
+                    "fc": PENDING,
+                    "ec": polygon_color(node.polygon),
+                    "lw": 2.5,
+                },
             )
         xs = [p[0] for p in places.values()] or [0.0]
         ys = [p[1] for p in places.values()] or [0.0]
@@ -175,7 +179,15 @@ class BspView:
             patch = Polygon(xy, closed=True, fc=color, ec="0.3", lw=0.5, alpha=0.45)
             self.regions[piece.polygon, piece.label] = ax.add_patch(patch)
             centre = xy.mean(axis=0)
-            ax.text(*centre, piece.label, fontsize=7, ha="center", va="center", clip_on=True)
+            ax.text(
+                *centre,
+                piece.label,
+                fontsize=8,
+                ha="center",
+                va="center",
+                bbox=LABEL_BOX,
+                clip_on=True,
+            )
         self.split_lines = []
         for event in self.steps:
             if event.kind == "polygon_split":
@@ -205,6 +217,7 @@ class BspView:
         for number, box in self.node_boxes.items():
             state = (number == focus, number in painted_nodes, number in built)
             box.get_bbox_patch().set_facecolor(_state_color(*state))
+            box.set_fontweight("bold" if number == focus else "normal")
         splits = sum(e.kind == "polygon_split" for e in shown)
         for k, line in enumerate(self.split_lines):
             line.set_visible(k < splits)
@@ -212,9 +225,9 @@ class BspView:
         for (polygon, label), patch in self.regions.items():
             mine = focus >= 0 and polygon == self.tree.nodes[focus].polygon and label in focused
             patch.set_linewidth(2.5 if mine else 0.5)
-            patch.set_edgecolor(CURRENT if mine else "0.3")
+            patch.set_edgecolor("black" if mine else "0.3")
         pieces_painted = sum(len(self.tree.nodes[n].pieces) for n in painted_nodes)
-        self.so_far.set_data(id_image(self._ids_after(pieces_painted)))
+        self.so_far.set_data(polygon_colors(self._ids_after(pieces_painted)))
         self.event.value = _describe(current)
         self._show_order(pieces_painted, focused, focus)
         refresh_figure(self.figure, self._canvas)

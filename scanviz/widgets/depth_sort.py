@@ -23,7 +23,6 @@ import html
 
 import ipywidgets as widgets
 import numpy as np
-from matplotlib.collections import PatchCollection
 from matplotlib.patches import Polygon as PolygonPatch
 from matplotlib.patches import Rectangle
 
@@ -32,6 +31,7 @@ from ..visibility import ScreenPolygons, solve, zbuffer
 from ..visibility.painter import Painter, sort_key
 from ._common import html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
+from .visibility import outline_samples, polygon_colors
 
 DECISION_KINDS = (
     "polygons_sorted",
@@ -42,27 +42,6 @@ DECISION_KINDS = (
 )
 LIST_COLUMNS = ("#", "piece", "polygon", "zmin", "zmax", "role")
 TEST_COLUMNS = ("test", "result")
-BACKGROUND = (1.0, 1.0, 1.0)
-DIFFERENCE = "#e00000"
-
-
-def polygon_colors(ids: np.ndarray) -> np.ndarray:
-    """(H, W, 3) colors of an (H, W) buffer of polygon ids (tab10 by id; -1 white)."""
-    import matplotlib
-
-    tab = np.array([matplotlib.colormaps["tab10"](k)[:3] for k in range(10)])
-    image = np.empty((*ids.shape, 3))
-    image[...] = BACKGROUND
-    drawn = ids >= 0
-    image[drawn] = tab[ids[drawn] % 10]
-    return image
-
-
-def _differences(axes, wrong: np.ndarray) -> None:
-    """Outline the samples of (H, W) bool `wrong` in red on `axes` (one collection)."""
-    ys, xs = np.nonzero(wrong)
-    squares = [Rectangle((x, y), 1, 1) for x, y in zip(xs.tolist(), ys.tolist(), strict=True)]
-    axes.add_collection(PatchCollection(squares, facecolor="none", edgecolor=DIFFERENCE, lw=1.2))
 
 
 def _image_axes(axes, ids: np.ndarray, title: str):
@@ -182,7 +161,7 @@ class DepthSortView:
         _image_axes(ax_z, zbuffer_result.polygon, "z-buffer (red: differs)")
         wrong = result.polygon != zbuffer_result.polygon
         for ax in (ax_final, ax_z):
-            _differences(ax, wrong)
+            outline_samples(ax, wrong)
         self.s_outline = PolygonPatch(np.zeros((3, 2)), fill=False, ec="black", lw=2.5)
         self.other_outline = PolygonPatch(np.zeros((3, 2)), fill=False, ec="black", lw=1.5, ls="--")
         ax_painted.add_patch(self.s_outline)
@@ -300,7 +279,7 @@ class PainterView:
         _image_axes(ax_z, zbuffer_result.polygon, "z-buffer (red: painter differs)")
         wrong = result.polygon != zbuffer_result.polygon
         for ax in (ax_final, ax_z):
-            _differences(ax, wrong)
+            outline_samples(ax, wrong)
         self.current_marker = Rectangle((0, 0), 1, 1, fill=False, ec="black", lw=2, visible=False)
         ax_painted.add_patch(self.current_marker)
         fig.tight_layout()

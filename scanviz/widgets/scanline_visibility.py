@@ -14,7 +14,6 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
-from matplotlib.colors import to_rgb
 from matplotlib.patches import Rectangle
 
 from ..trace import Recorder, Trace
@@ -22,11 +21,9 @@ from ..visibility import solve, zbuffer
 from ..visibility.scanline import Scanline
 from ._common import html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
-from .visibility import BACKGROUND, PALETTE
+from .visibility import outline_samples, polygon_color, polygon_colors
 
 SCANLINE_KINDS = ("surface_table_built", "active_surfaces", "visible_span")
-COLORS = np.array([to_rgb(c) for c in PALETTE])  # polygon p is COLORS[p % 9], as in the comparison
-BACKGROUND_COLOR = np.array(to_rgb(BACKGROUND))
 BAND_COLORS = {"decided": (1.0, 0.91, 0.66, 0.6), "reused": (0.70, 0.92, 0.70, 0.6)}
 SPAN_COLUMNS = (
     "x_start",
@@ -44,13 +41,6 @@ def _band_color(span) -> tuple[float, ...]:
     if not span.surfaces:
         return (1.0, 1.0, 1.0, 0.0)
     return BAND_COLORS["reused" if span.reused else "decided"]
-
-
-def polygon_colors(ids: np.ndarray) -> np.ndarray:
-    """(H, W, 3) colors of an (H, W) array of polygon ids (-1: background, white)."""
-    image = COLORS[np.maximum(ids, 0) % len(COLORS)]
-    image[ids < 0] = BACKGROUND_COLOR
-    return image
 
 
 class ScanlineVisibilityView:
@@ -110,11 +100,11 @@ class ScanlineVisibilityView:
         self.bands = PolyCollection([], edgecolors="0.55", linewidths=0.6, zorder=1)
         self.surface_lines = LineCollection([], linewidths=1.0, zorder=2)
         self.visible_lines = LineCollection([], linewidths=3.5, zorder=3)
-        self.splits = LineCollection([], colors="crimson", linestyles="--", linewidths=1, zorder=4)
+        self.splits = LineCollection([], colors="0.2", linestyles="--", linewidths=1, zorder=4)
         for artist in (self.bands, self.surface_lines, self.visible_lines, self.splits):
             ax_slice.add_collection(artist)
         self.current_band = Rectangle(
-            (0, low - pad), 0, high - low + 2 * pad, fill=False, ec="orange", lw=2, visible=False
+            (0, low - pad), 0, high - low + 2 * pad, fill=False, ec="black", lw=2, visible=False
         )
         ax_slice.add_patch(self.current_band)
         extent = (0, width, 0, height)
@@ -122,10 +112,17 @@ class ScanlineVisibilityView:
         self.decided_image = ax_decided.imshow(
             empty, origin="lower", extent=extent, interpolation="nearest"
         )
-        self.scanline = ax_decided.axhline(0, color="orange", lw=1.5, visible=False)
+        self.scanline = ax_decided.axhline(0, color="black", lw=1.5, ls="--", visible=False)
+        wrong = result.polygon != zbuffer_result.polygon
         for ax, ids in ((ax_final, result.polygon), (ax_zbuffer, zbuffer_result.polygon)):
             ax.imshow(polygon_colors(ids), origin="lower", extent=extent, interpolation="nearest")
-        titles = ("xz slice of the scanline", "decided so far", "scanline: final", "z-buffer")
+            outline_samples(ax, wrong)
+        titles = (
+            "xz slice of the scanline",
+            "decided so far",
+            "scanline: final",
+            "z-buffer (red: differs)",
+        )
         for ax, title in zip(axes, titles, strict=True):
             ax.set_title(title, fontsize=10)
         fig.tight_layout()
@@ -172,12 +169,12 @@ class ScanlineVisibilityView:
         for _, e in here:
             for p, z in zip(e.surfaces, e.depths, strict=True):
                 segments.append(self._segment(p, z, e.x_start, e.x_end))
-                colors.append((*COLORS[p % len(COLORS)], 0.45))
+                colors.append((*polygon_color(p), 0.45))
         self.surface_lines.set_segments(segments)
         self.surface_lines.set_colors(colors)
         visible = [e for e in done if e.visible >= 0]
         self.visible_lines.set_segments([self._visible_segment(e) for e in visible])
-        self.visible_lines.set_colors([COLORS[e.visible % len(COLORS)] for e in visible])
+        self.visible_lines.set_colors([polygon_color(e.visible) for e in visible])
         low, high = self.axes[0].get_ylim()
         self.bands.set_verts(
             [[(e.x_start, low), (e.x_end, low), (e.x_end, high), (e.x_start, high)] for e in done]

@@ -245,25 +245,47 @@ def algorithm_names() -> list[str]:
     return known + [name for name in ALGORITHMS if name not in known]
 
 
+def polygon_color(polygon: int) -> tuple[float, float, float]:
+    """RGB of polygon `polygon` in every visibility widget: ``PALETTE[polygon % len(PALETTE)]``.
+
+    >>> [round(c, 3) for c in polygon_color(9)]
+    [0.0, 0.447, 0.698]
+    """
+    from matplotlib.colors import to_rgb
+
+    return to_rgb(PALETTE[int(polygon) % len(PALETTE)])
+
+
 def polygon_colors(ids: np.ndarray) -> np.ndarray:
-    """(H, W, 3) RGB of an (H, W) buffer of polygon ids: ``PALETTE[p % len(PALETTE)]``, -1 white.
+    """(H, W, 3) RGB of an (H, W) buffer of polygon ids: ``polygon_color(p)``, -1 white.
 
     >>> polygon_colors(np.array([[-1, 0]]))[0].round(3).tolist()
     [[1.0, 1.0, 1.0], [0.0, 0.447, 0.698]]
     """
     from matplotlib.colors import to_rgb
 
+    ids = np.asarray(ids)
     colors = np.array([to_rgb(c) for c in (*PALETTE, BACKGROUND)])
     return colors[np.where(ids >= 0, ids % len(PALETTE), len(PALETTE))]
 
 
-def outline_samples(axes, samples: np.ndarray, color: str = DIFFERENCE) -> int:
-    """Outline the pixels where (H, W) bool `samples` is True on `axes`; return their count."""
+def outline_samples(
+    axes, samples: np.ndarray, color: str = DIFFERENCE, *, offset: float = 0.0
+) -> int:
+    """Outline the pixels where (H, W) bool `samples` is True on `axes`; return their count.
+
+    Pixel (x, y) is the unit square from (x + offset, y + offset): 0 for
+    images drawn on ``extent=(0, W, 0, H)``, -0.5 for squares centred on the
+    samples.
+    """
     from matplotlib.collections import PatchCollection
     from matplotlib.patches import Rectangle
 
     ys, xs = np.nonzero(samples)
-    squares = [Rectangle((x, y), 1, 1) for x, y in zip(xs.tolist(), ys.tolist(), strict=True)]
+    squares = [
+        Rectangle((x + offset, y + offset), 1, 1)
+        for x, y in zip(xs.tolist(), ys.tolist(), strict=True)
+    ]
     axes.add_collection(PatchCollection(squares, fc="none", ec=color, lw=1.2))
     return len(xs)
 

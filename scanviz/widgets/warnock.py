@@ -23,24 +23,19 @@ from ..visibility import solve
 from ..visibility.warnock import CASES, Warnock
 from ._common import html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
-from .visibility import BACKGROUND, PALETTE
+from .visibility import outline_samples, polygon_colors
 
+# Dark outlines, apart from the polygons' bright `PALETTE` fills; none red: red marks differences.
 CASE_COLORS = {
-    "empty": "#7f7f7f",
-    "surrounding": "#1a9641",
-    "single": "#2b83ba",
-    "subdivide": "#f28e2b",
-    "pixel": "#d7191c",
+    "empty": "#b8b8b8",
+    "surrounding": "#00441b",
+    "single": "#08306b",
+    "subdivide": "#595959",
+    "pixel": "#7b3294",
 }
 UNDECIDED = "#d9d9d9"  # samples no area has decided yet
-LEAF_ALPHA = 0.25  # areas decided without subdividing are tinted with their case's colour
+LEAF_ALPHA = 0.15  # areas decided without subdividing are tinted with their case's colour
 COUNT_COLUMNS = ("areas so far", *CASES)
-
-
-def polygon_colors(polygon: np.ndarray) -> np.ndarray:
-    """(H, W, 3) RGB of a buffer of polygon ids: ``PALETTE[p % len(PALETTE)]``, background white."""
-    colors = np.array([to_rgb(c) for c in (*PALETTE, BACKGROUND)])
-    return colors[np.where(polygon >= 0, polygon % len(PALETTE), len(PALETTE))]
 
 
 class WarnockView:
@@ -113,12 +108,15 @@ class WarnockView:
         ax_final.imshow(self._final_colors, origin="lower", extent=extent, interpolation="nearest")
         reference = polygon_colors(zbuffer_result.polygon)
         ax_zbuffer.imshow(reference, origin="lower", extent=extent, interpolation="nearest")
-        titles = ("quadtree so far", "decided so far", "Warnock (final)", "z-buffer")
+        wrong = result.polygon != zbuffer_result.polygon
+        for ax in (ax_final, ax_zbuffer):
+            outline_samples(ax, wrong)
+        titles = ("quadtree so far", "decided so far", "Warnock (final)", "z-buffer (red: differs)")
         for ax, title in zip(axes, titles, strict=True):
             ax.set_title(title, fontsize=10)
             ax.set_xlim(0, width)
             ax.set_ylim(0, height)
-        handles = [Patch(fc="none", ec=CASE_COLORS[c], label=c) for c in CASES]
+        handles = [Patch(fc="none", ec=CASE_COLORS[c], lw=2, label=c) for c in CASES]
         fig.legend(handles=handles, loc="lower center", ncol=len(CASES), fontsize=8)
         fig.tight_layout(rect=(0, 0.07, 1, 1))
         self.figure, self.axes = fig, axes

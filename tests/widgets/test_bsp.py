@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from scanviz.visibility import examples
-from scanviz.widgets.bsp import BUILT, CURRENT, PAINTED, PENDING, bsp_stepper, id_image, tree_layout
+from scanviz.widgets.bsp import BUILT, CURRENT, PAINTED, PENDING, bsp_stepper, tree_layout
+from scanviz.widgets.visibility import polygon_colors
 
 matplotlib.use("Agg")
 
@@ -67,16 +68,29 @@ def test_the_display_paints_in_order(stepper):
     assert [k for k, c in colors.items() if c == PAINTED] == ["3", "4", "5b"]
     image = view.so_far.get_array()
     for polygon, shown in ((4, True), (3, True), (1, False), (2, False)):
-        color = id_image(np.array([[polygon]]))[0, 0]
+        color = polygon_colors(np.array([[polygon]]))[0, 0]
         assert np.all(image == color, axis=-1).any() == shown, polygon
     assert view.order.value.count("background:#ffe9a8") == 1  # the current node's piece
     stepper.slider.value = 13
-    np.testing.assert_array_equal(view.so_far.get_array(), id_image(view.result.polygon))
+    np.testing.assert_array_equal(view.so_far.get_array(), polygon_colors(view.result.polygon))
     assert set(box_colors(view).values()) == {PAINTED, CURRENT}
 
 
 def test_the_final_images_are_the_bsp_and_the_zbuffer(stepper):
     view = stepper.views[0]
     _, _, final, zbuffered = view.axes[1:]
-    np.testing.assert_array_equal(final.images[0].get_array(), id_image(view.result.polygon))
+    np.testing.assert_array_equal(final.images[0].get_array(), polygon_colors(view.result.polygon))
     np.testing.assert_array_equal(final.images[0].get_array(), zbuffered.images[0].get_array())
+
+
+def test_tree_boxes_and_regions_have_their_polygons_palette_color(stepper):
+    from matplotlib.colors import to_rgb
+
+    from scanviz.widgets.visibility import PALETTE
+
+    view = stepper.views[0]
+    for node in view.tree.nodes:
+        edge = view.node_boxes[node.node].get_bbox_patch().get_edgecolor()
+        assert np.allclose(edge[:3], to_rgb(PALETTE[node.polygon % len(PALETTE)])), node.node
+    for (polygon, _), patch in view.regions.items():
+        assert np.allclose(patch.get_facecolor()[:3], to_rgb(PALETTE[polygon % len(PALETTE)]))

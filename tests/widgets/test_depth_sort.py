@@ -10,8 +10,8 @@ from scanviz.widgets.depth_sort import (
     depth_sort_stepper,
     list_states,
     painter_stepper,
-    polygon_colors,
 )
+from scanviz.widgets.visibility import polygon_colors
 
 matplotlib.use("Agg")
 

@@ -8,9 +8,9 @@ from scanviz.visibility import ScreenPolygons, examples, zbuffer
 from scanviz.widgets.scanline_visibility import (
     BAND_COLORS,
     ScanlineVisibilityView,
-    polygon_colors,
     scanline_visibility_stepper,
 )
+from scanviz.widgets.visibility import polygon_colors
 
 matplotlib.use("Agg")
 

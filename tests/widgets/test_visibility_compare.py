@@ -8,7 +8,7 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 import pytest
-from matplotlib.colors import to_rgb
+from matplotlib.colors import to_rgb, to_rgba
 
 from scanviz.visibility import ALGORITHMS, Painter, ScreenPolygons, examples
 from scanviz.widgets.visibility import (
@@ -148,3 +148,67 @@ def test_the_docs_page_shows_the_same_taxonomy():
         for t in TAXONOMY
     ]
     assert [line for line in page.splitlines() if line in rows] == rows
+
+
+def widget_figures(polygons, width, height):
+    """Each stepping widget's figure on the scene, stepped to the middle."""
+    from scanviz.widgets.bsp import bsp_stepper
+    from scanviz.widgets.depth_sort import depth_sort_stepper, painter_stepper
+    from scanviz.widgets.scanline_visibility import scanline_visibility_stepper
+    from scanviz.widgets.warnock import warnock_stepper
+
+    steppers = (depth_sort_stepper, painter_stepper, bsp_stepper)
+    steppers += (scanline_visibility_stepper, warnock_stepper)
+    figures = {}
+    for make in steppers:
+        stepper = make(polygons, width, height)
+        stepper.slider.value = stepper.slider.max // 2
+        figures[make.__name__] = stepper.views[0].figure
+    return figures
+
+
+def zbuffer_panel(figure):
+    (axes,) = [a for a in figure.axes if a.get_title().startswith("z-buffer")]
+    return axes.images[0].get_array()
+
+
+def is_red(rgba) -> bool:
+    r, g, b, a = rgba
+    return a > 0 and r > 0.6 and g < 0.35 and b < 0.35
+
+
+def red_artists(figure) -> list:
+    """The artists drawn in red other than outline collections (no fill, red edges)."""
+    from matplotlib.collections import Collection
+    from matplotlib.colors import to_rgba_array
+
+    found = []
+    for artist in figure.findobj():
+        if isinstance(artist, Collection) and not artist.get_facecolor()[:, 3].any():
+            continue  # an outline: the only place red may be
+        for getter in ("get_facecolor", "get_edgecolor", "get_color"):
+            if not hasattr(artist, getter):
+                continue
+            try:
+                colors = to_rgba_array(getattr(artist, getter)())
+            except (TypeError, ValueError):
+                continue
+            if any(is_red(c) for c in colors):
+                found.append((type(artist).__name__, getter))
+    return found
+
+
+def test_a_polygon_has_the_same_color_in_every_widget():
+    polygons = examples.slides_painter()
+    reference = compare_visibility(polygons, 16, 12, ["zbuffer"]).axes[0].images[0].get_array()
+    # The square (polygon 2) at pixel (7, 7), the rectangle (polygon 1) over the triangle at (3, 3).
+    assert np.allclose(reference[7, 7], to_rgb(PALETTE[2]))
+    assert np.allclose(reference[3, 3], to_rgb(PALETTE[1]))
+    for name, figure in widget_figures(polygons, 16, 12).items():
+        np.testing.assert_allclose(zbuffer_panel(figure), reference, err_msg=name)
+
+
+def test_the_widgets_use_red_only_for_the_outlines_of_differences():
+    assert not any(is_red(to_rgba(c)) for c in PALETTE)
+    for name, figure in widget_figures(examples.long_behind_short(), 16, 12).items():
+        assert red_artists(figure) == [], name

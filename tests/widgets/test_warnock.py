@@ -9,7 +9,8 @@ from matplotlib.colors import to_rgb, to_rgba
 
 from scanviz.visibility import examples, zbuffer
 from scanviz.widgets.stepper import Stepper
-from scanviz.widgets.warnock import CASE_COLORS, UNDECIDED, polygon_colors, warnock_stepper
+from scanviz.widgets.visibility import polygon_colors
+from scanviz.widgets.warnock import CASE_COLORS, UNDECIDED, warnock_stepper
 
 matplotlib.use("Agg")
 
