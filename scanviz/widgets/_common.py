@@ -67,6 +67,9 @@ def swatch(color: Sequence[float]) -> str:
     )
 
 
+WIDEST = 9.5  # inches: the widest figure a notebook shows whole (the canvas beside its toolbar)
+
+
 def new_figure(ncols: int, *, width: float = 9.0, height: float = 3.2, **subplot_kw):
     """(figure, axes) made without displaying it (pyplot, so ipympl gives its canvas widget)."""
     import matplotlib.pyplot as plt

@@ -20,7 +20,7 @@ import numpy as np
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.bsp import BSP
-from ._common import html_table, say, status_label
+from ._common import WIDEST, html_table, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
@@ -107,7 +107,7 @@ class BspView:
         import matplotlib.pyplot as plt
 
         with plt.ioff():
-            fig = plt.figure(figsize=(11, 7.5))
+            fig = plt.figure(figsize=(WIDEST, 6.5))
         fig.canvas.header_visible = False
         grid = fig.add_gridspec(2, 3, height_ratios=(1.1, 1))
         ax_tree, ax_part = fig.add_subplot(grid[0, :2]), fig.add_subplot(grid[0, 2])

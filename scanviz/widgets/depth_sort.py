@@ -29,7 +29,7 @@ from matplotlib.patches import Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import ScreenPolygons, solve, zbuffer
 from ..visibility.painter import Painter, sort_key
-from ._common import html_table, new_figure, say, status_label
+from ._common import WIDEST, html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
@@ -153,7 +153,7 @@ class DepthSortView:
         height, width = result.polygon.shape
         self._painting = _Painting(trace, (height, width))
         self._states = list_states(self.steps)
-        fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=10.5, height=3.6)
+        fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=WIDEST, height=3.3)
         self.painted_image = _image_axes(
             ax_painted, np.full((height, width), -1), "painted so far (S solid, S' dashed)"
         )
@@ -273,7 +273,7 @@ class PainterView:
         height, width = result.polygon.shape
         self._painting = _Painting(self.steps, (height, width))
         self._sorted = next((e.pieces for e in self.steps if e.kind == "polygons_sorted"), ())
-        fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=10.5, height=3.6)
+        fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=WIDEST, height=3.3)
         self.painted_image = _image_axes(ax_painted, np.full((height, width), -1), "painted so far")
         _image_axes(ax_final, result.polygon, f"painter's ({key})")
         _image_axes(ax_z, zbuffer_result.polygon, "z-buffer (red: painter differs)")

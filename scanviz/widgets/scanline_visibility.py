@@ -19,7 +19,7 @@ from matplotlib.patches import Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.scanline import Scanline
-from ._common import html_table, new_figure, say, status_label
+from ._common import WIDEST, html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
@@ -90,7 +90,7 @@ class ScanlineVisibilityView:
         pad = 0.05 * (high - low) or 0.05
 
         fig, axes = new_figure(
-            4, width=13.0, height=3.6, gridspec_kw={"width_ratios": [2, 1, 1, 1]}
+            4, width=WIDEST, height=3.0, gridspec_kw={"width_ratios": [2, 1, 1, 1]}
         )
         ax_slice, ax_decided, ax_final, ax_zbuffer = axes
         ax_slice.set_xlim(0, width)

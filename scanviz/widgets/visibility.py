@@ -19,6 +19,7 @@ from dataclasses import MISSING, dataclass, fields
 import numpy as np
 
 from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
+from ._common import WIDEST
 
 PALETTE = (  # polygon p is PALETTE[p % 9]; no red in it: red marks a disagreement
     "#0072b2",
@@ -213,7 +214,8 @@ def compare_visibility(
     reference = solve("zbuffer", polygons, width, height, **options).polygon
     rows = math.ceil(len(chosen) / COLUMNS)
     columns = min(len(chosen), COLUMNS)
-    figure = Figure(figsize=(3.6 * columns, 3.6 * rows * max(height / width, 0.5) + 0.8))
+    side = WIDEST / COLUMNS  # inches per panel
+    figure = Figure(figsize=(side * columns, side * rows * max(height / width, 0.5) + 0.8))
     for k, visibility in enumerate(chosen):
         shown = solve(visibility, polygons, width, height, **options).polygon
         axes = figure.add_subplot(rows, columns, k + 1)

@@ -21,7 +21,7 @@ from matplotlib.patches import Patch, Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import solve
 from ..visibility.warnock import CASES, Warnock
-from ._common import html_table, new_figure, say, status_label
+from ._common import WIDEST, html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
@@ -82,7 +82,7 @@ class WarnockView:
         self._final_colors = polygon_colors(result.polygon)
         self.step = 0
 
-        fig, axes = new_figure(4, width=13.0, height=3.9)
+        fig, axes = new_figure(4, width=WIDEST, height=3.0)
         extent = (0, width, 0, height)
         ax_tree, ax_decided, ax_final, ax_zbuffer = axes
         ax_tree.imshow(
