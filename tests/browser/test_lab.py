@@ -3,7 +3,8 @@
 The test starts JupyterLab on a free localhost port over a temporary copy of
 ``notebooks/``, opens lesson 02, runs all cells from the Run menu, then clicks
 the scan-conversion stepper's Next button and checks that the active edge table
-shown beside it changes. Screenshots go to ``tests/browser/screenshots/``
+shown beside it changes; the same for lesson 07 and its depth-sort stepper
+(the pair being tested changes). Screenshots go to ``tests/browser/screenshots/``
 (their paths are printed; ``pytest -rP`` shows them).
 
 The browser is Debian's chromium, driven by Playwright (no browser downloads).
@@ -26,6 +27,9 @@ from playwright.sync_api import Page, sync_playwright
 
 ROOT = Path(__file__).resolve().parents[2]
 LESSON = "02_scan_conversion.ipynb"
+VISIBILITY_LESSON = "07_visibility.ipynb"
+DEPTH_SORT_TITLE = "depth sort: one pair, swap or split per step"  # DepthSortView's heading
+PAIR_CAPTION = re.compile(r"no pair under test|S = \S+, S' = \S+")  # DepthSortView.settled
 EXERCISE = "exercises/05_span_rule.ipynb"
 SCREENSHOTS = Path(__file__).resolve().parent / "screenshots"
 CHROMIUM_FLAGS = [
@@ -216,6 +220,20 @@ def test_lesson_runs_and_steps_in_jupyterlab(lab_url, browser):
     page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
     _screenshot(page, f"{Path(LESSON).stem}-stepped.png")
     assert after != before, f"the AET table did not change in {NEXT_CLICKS} steps:\n{before}"
+
+
+def test_visibility_lesson_runs_and_its_depth_sort_stepper_steps(lab_url, browser):
+    page = browser.new_page()
+    _open(page, lab_url, VISIBILITY_LESSON)
+    _run_all_cells(page, Path(VISIBILITY_LESSON).stem)
+    stepper = page.locator(".jp-OutputArea-output", has_text=DEPTH_SORT_TITLE).first
+    stepper.scroll_into_view_if_needed()
+    pair = stepper.locator(".widget-html-content").filter(has_text=PAIR_CAPTION).first
+    before = pair.inner_text()
+    _click_next(page, stepper, NEXT_CLICKS)
+    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
+    _screenshot(page, f"{Path(VISIBILITY_LESSON).stem}-stepped.png")
+    assert pair.inner_text() != before, f"the pair tested did not change in {NEXT_CLICKS} steps"
 
 
 def _answer_with(path: Path, source: str) -> None:
