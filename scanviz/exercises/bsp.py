@@ -11,7 +11,6 @@ nearer), the slides' example among them (`scanviz.visibility.examples.slides_bsp
 
 from __future__ import annotations
 
-import math
 import random
 
 import numpy as np
@@ -20,6 +19,7 @@ from .. import steps
 from ..visibility import ScreenPolygons, solve
 from ..visibility.bsp import BSP, ORDERS, ROOTS, display_order
 from ..visibility.examples import BSP_SEQUENCE, slides_bsp
+from .cases import plane_polygon
 from .catalog import register
 from .core import Case, Exercise, Variant, edited_variant
 
@@ -69,23 +69,12 @@ def _slides_case(order: str) -> dict:
     }
 
 
-def _random_polygon(rng: random.Random, width: int, height: int) -> list:
-    """A triangle or convex quad with a random depth plane, either way round (front or back)."""
-    n, cx, cy = rng.choice((3, 4)), rng.uniform(1, width - 1), rng.uniform(1, height - 1)
-    radius = rng.uniform(2, max(width, height) / 2)
-    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(n))
-    z0, dzdx, dzdy = rng.uniform(0.2, 0.8), rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05)
-    points = []
-    for a in angles:
-        x, y = cx + radius * math.cos(a), cy + radius * math.sin(a)
-        points.append([round(x, 3), round(y, 3), round(z0 + dzdx * (x - cx) + dzdy * (y - cy), 4)])
-    return points[::-1] if rng.random() < 0.5 else points
-
-
 def _bsp_case(rng: random.Random) -> Case:
     width, height = rng.randint(8, 16), rng.randint(8, 16)
     count = rng.randint(2, 6)
-    polygons = [_random_polygon(rng, width, height) for _ in range(count)]
+    polygons = [
+        plane_polygon(rng, width, height, depth=(0.2, 0.8), slope=0.05) for _ in range(count)
+    ]
     order, root = rng.choice(ORDERS), rng.choice(ROOTS)
     sequence = rng.sample(range(count), rng.randint(0, count))
     return Case(

@@ -13,6 +13,25 @@ import random
 FEATURES = ("convex", "concave", "horizontal edges", "shared vertex", "sliver", "on pixel centers")
 
 
+def plane_polygon(
+    rng: random.Random, width: int, height: int, *, depth: tuple[float, float], slope: float
+) -> list:
+    """A triangle or convex quad of [x, y, z] with a random depth plane, either way round.
+
+    Its depth at its centre is in `depth`, its steps dz/dx and dz/dy within
+    +-`slope`; half of them are clockwise (seen from the back).
+    """
+    n, cx, cy = rng.choice((3, 4)), rng.uniform(1, width - 1), rng.uniform(1, height - 1)
+    radius = rng.uniform(2, max(width, height) / 2)
+    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(n))
+    z0, dzdx, dzdy = rng.uniform(*depth), rng.uniform(-slope, slope), rng.uniform(-slope, slope)
+    points = []
+    for a in angles:
+        x, y = cx + radius * math.cos(a), cy + radius * math.sin(a)
+        points.append([round(x, 3), round(y, 3), round(z0 + dzdx * (x - cx) + dzdy * (y - cy), 4)])
+    return points[::-1] if rng.random() < 0.5 else points
+
+
 def grid_value(rng: random.Random, low: float, high: float, step: float = 0.25) -> float:
     """A value in [low, high] on a grid of `step` (quarter pixels by default: ties happen)."""
     return round(rng.uniform(low, high) / step) * step

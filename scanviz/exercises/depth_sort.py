@@ -20,6 +20,7 @@ import numpy as np
 from .. import steps
 from ..visibility import ScreenPolygons, examples, solve
 from ..visibility.depth_sort import DepthSort, depth_order_test
+from .cases import plane_polygon
 from .catalog import register
 from .core import Case, Exercise, Variant, edited_variant
 
@@ -62,19 +63,6 @@ def _inputs(polygons: ScreenPolygons, width: int, height: int) -> dict:
     }
 
 
-def _plane_polygon(rng: random.Random, width: int, height: int) -> list:
-    """A triangle or convex quad with a random depth plane, either way round."""
-    n, cx, cy = rng.choice((3, 4)), rng.uniform(1, width - 1), rng.uniform(1, height - 1)
-    radius = rng.uniform(2, max(width, height) / 2)
-    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(n))
-    z0, dzdx, dzdy = rng.uniform(0.3, 0.7), rng.uniform(-0.06, 0.06), rng.uniform(-0.06, 0.06)
-    points = []
-    for a in angles:
-        x, y = cx + radius * math.cos(a), cy + radius * math.sin(a)
-        points.append([round(x, 3), round(y, 3), round(z0 + dzdx * (x - cx) + dzdy * (y - cy), 4)])
-    return points[::-1] if rng.random() < 0.5 else points
-
-
 def _touching_rectangles(rng: random.Random, width: int, height: int) -> list:
     """Two rectangles sharing a border at an integer x (or y), crossing each other's planes."""
     cut = rng.randint(3, min(width, height) - 3)
@@ -115,7 +103,10 @@ def _depth_sort_case(rng: random.Random) -> Case:
     elif category == "touching rectangles":
         polygons = _touching_rectangles(rng, width, height)
     else:
-        polygons = [_plane_polygon(rng, width, height) for _ in range(rng.randint(2, 5))]
+        polygons = [
+            plane_polygon(rng, width, height, depth=(0.3, 0.7), slope=0.06)
+            for _ in range(rng.randint(2, 5))
+        ]
         if category == "mixed":
             polygons += _touching_rectangles(rng, width, height)
     return Case(

@@ -21,7 +21,7 @@ from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.bsp import BSP
 from ._common import WIDEST, html_table, say, status_label
-from .stepper import Stepper, figure_widget, refresh_figure
+from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
 STEP_KINDS = ("bsp_node", "polygon_split", "bsp_visited")
@@ -340,6 +340,7 @@ def bsp_stepper(polygons, width: int, height: int, **options) -> Stepper:
     rest = {k: v for k, v in options.items() if k not in fields}
     result = solve(chosen, polygons, width, height, trace=Recorder(TRACE_KINDS), **rest)
     view = BspView(result.trace, result, zbuffer(polygons, width, height, **rest))
-    if len(view.steps) > Stepper.MAX_STEPS:
-        say(view.note, f"{len(view.steps)} steps: showing the first {Stepper.MAX_STEPS}.")
-    return Stepper(view.steps[: Stepper.MAX_STEPS], [view], title="BSP tree: build, then display")
+    steps, note = first_steps(view.steps, "steps")
+    if note:
+        say(view.note, note)
+    return Stepper(steps, [view], title="BSP tree: build, then display")

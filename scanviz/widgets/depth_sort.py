@@ -30,7 +30,7 @@ from ..trace import Recorder, Trace
 from ..visibility import ScreenPolygons, solve, zbuffer
 from ..visibility.painter import Painter, sort_key
 from ._common import WIDEST, html_table, new_figure, say, status_label
-from .stepper import Stepper, figure_widget, refresh_figure
+from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
 DECISION_KINDS = (
@@ -351,9 +351,9 @@ def depth_sort_stepper(polygons: ScreenPolygons, width: int, height: int, **opti
     result = solve(algorithm, polygons, width, height, trace=Recorder(), **options)
     reference = zbuffer(polygons, width, height, **options)
     view = DepthSortView(result.trace, result, reference)
-    if len(view.steps) > Stepper.MAX_STEPS:
-        view.steps = view.steps[: Stepper.MAX_STEPS]
-        say(view.note, f"showing the first {Stepper.MAX_STEPS} steps of the decision")
+    view.steps, note = first_steps(view.steps, "steps of the decision")
+    if note:
+        say(view.note, note)
     return Stepper(view.steps, [view], title="depth sort: one pair, swap or split per step")
 
 
@@ -377,10 +377,6 @@ def painter_stepper(
     recorder = Recorder(kinds=["polygons_sorted", "pixel_painted"])
     result = solve(Painter(key=key), polygons, width, height, trace=recorder, **options)
     reference = zbuffer(polygons, width, height, **options)
-    note = ""
-    trace = result.trace
-    if len(trace) > Stepper.MAX_STEPS:
-        note = f"showing the first {Stepper.MAX_STEPS} of {len(trace)} events"
-        trace = trace[: Stepper.MAX_STEPS]
+    trace, note = first_steps(result.trace)
     view = PainterView(trace, result, reference, key=key, note=note)
     return Stepper(view.steps, [view], title=f"painter's algorithm (sorted on {key})")

@@ -20,7 +20,7 @@ from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.scanline import Scanline
 from ._common import WIDEST, html_table, new_figure, say, status_label
-from .stepper import Stepper, figure_widget, refresh_figure
+from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
 SCANLINE_KINDS = ("surface_table_built", "active_surfaces", "visible_span")
@@ -267,9 +267,6 @@ def scanline_visibility_stepper(polygons, width: int, height: int, **options) ->
     chosen = Scanline(coherence=options.pop("coherence", True))
     result = solve(chosen, polygons, width, height, **options, trace=Recorder(kinds=SCANLINE_KINDS))
     reference = zbuffer(polygons, width, height, **options)
-    trace, note = result.trace, ""
-    if len(trace) > Stepper.MAX_STEPS:
-        note = f"The trace holds {len(trace)} events: showing the first {Stepper.MAX_STEPS}."
-        trace = trace[: Stepper.MAX_STEPS]
+    trace, note = first_steps(result.trace)
     view = ScanlineVisibilityView(trace, result, reference, note=note)
     return Stepper(trace, [view], title="scanline visibility: one span per step")

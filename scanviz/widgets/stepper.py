@@ -209,6 +209,21 @@ class Stepper:
         display(self.widget)
 
 
+def first_steps(steps, what: str = "events"):
+    """(at most `Stepper.MAX_STEPS` of `steps`, a note saying what was cut or "").
+
+    >>> first_steps(list(range(3)))
+    ([0, 1, 2], '')
+    >>> len(first_steps(list(range(Stepper.MAX_STEPS + 1)), "areas")[0])
+    20000
+    """
+    if len(steps) <= Stepper.MAX_STEPS:
+        return steps, ""
+    return steps[
+        : Stepper.MAX_STEPS
+    ], f"{len(steps):,} {what}: showing the first {Stepper.MAX_STEPS:,}."
+
+
 def _too_long_message(steps: int) -> str:
     return (
         f"<b>This trace has {steps:,} events; a stepper shows at most {Stepper.MAX_STEPS:,}.</b><br>"

@@ -22,7 +22,7 @@ from ..trace import Recorder, Trace
 from ..visibility import solve
 from ..visibility.warnock import CASES, Warnock
 from ._common import WIDEST, html_table, new_figure, say, status_label
-from .stepper import Stepper, figure_widget, refresh_figure
+from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
 # Dark outlines, apart from the polygons' bright `PALETTE` fills; none red: red marks differences.
@@ -199,9 +199,6 @@ def warnock_stepper(polygons, width: int, height: int, *, prune: bool = True, **
     recorder = Recorder(kinds=["area_classified"])
     result = solve(Warnock(prune=prune), polygons, width, height, **options, trace=recorder)
     reference = solve("zbuffer", polygons, width, height, **options)
-    trace, note = result.trace, ""
-    if len(trace) > Stepper.MAX_STEPS:
-        note = f"The trace holds {len(trace)} areas: showing the first {Stepper.MAX_STEPS}."
-        trace = trace[: Stepper.MAX_STEPS]
+    trace, note = first_steps(result.trace, "areas")
     view = WarnockView(trace, result, reference, note=note)
     return Stepper(trace, [view], title="Warnock's area subdivision: one area per step")
