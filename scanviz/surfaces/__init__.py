@@ -1,5 +1,14 @@
-"""Grid surfaces z = f(x, y) (Wang 1989, ch. 2): grids, the database format, meshes."""
+"""Grid surfaces z = f(x, y) (Wang 1989, ch. 2): grids, the database format, meshes, the view,
+and the Floating Perimeter Algorithm's viewing cases and facet enumeration."""
 
+from .enumeration import (
+    Enumeration,
+    enumerate_facets,
+    facet_sequence,
+    region_classes,
+    viewing_case,
+    vp_cell,
+)
 from .grid import (
     BUILTIN_SURFACES,
     GridSurface,
@@ -11,10 +20,13 @@ from .grid import (
     rogers,
     rogers_height,
 )
+from .view import View
 
 __all__ = [
     "BUILTIN_SURFACES",
+    "Enumeration",
     "GridSurface",
+    "View",
     "gaussian",
     "gaussian_height",
     "polynomial",
@@ -22,4 +34,9 @@ __all__ = [
     "random_surface",
     "rogers",
     "rogers_height",
+    "enumerate_facets",
+    "facet_sequence",
+    "region_classes",
+    "viewing_case",
+    "vp_cell",
 ]
