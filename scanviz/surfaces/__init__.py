@@ -9,6 +9,7 @@ from .enumeration import (
     viewing_case,
     vp_cell,
 )
+from .facet_edges import FacetEdges, facet_edges
 from .grid import (
     BUILTIN_SURFACES,
     GridSurface,
@@ -25,6 +26,7 @@ from .view import View
 __all__ = [
     "BUILTIN_SURFACES",
     "Enumeration",
+    "FacetEdges",
     "GridSurface",
     "View",
     "gaussian",
@@ -35,6 +37,7 @@ __all__ = [
     "rogers",
     "rogers_height",
     "enumerate_facets",
+    "facet_edges",
     "facet_sequence",
     "region_classes",
     "viewing_case",
