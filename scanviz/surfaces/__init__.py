@@ -1,5 +1,6 @@
 """Grid surfaces z = f(x, y) (Wang 1989, ch. 2): grids, the database format, meshes, the view,
-and the Floating Perimeter Algorithm's viewing cases and facet enumeration."""
+the floating horizon, and the Floating Perimeter Algorithm's viewing cases, facet enumeration and
+the edges each facet processes."""
 
 from .enumeration import (
     Enumeration,
@@ -21,6 +22,7 @@ from .grid import (
     rogers,
     rogers_height,
 )
+from .horizon import HorizonResult, HorizonStats, floating_horizon
 from .view import View
 
 __all__ = [
@@ -28,6 +30,8 @@ __all__ = [
     "Enumeration",
     "FacetEdges",
     "GridSurface",
+    "HorizonResult",
+    "HorizonStats",
     "View",
     "gaussian",
     "gaussian_height",
@@ -39,6 +43,7 @@ __all__ = [
     "enumerate_facets",
     "facet_edges",
     "facet_sequence",
+    "floating_horizon",
     "region_classes",
     "viewing_case",
     "vp_cell",

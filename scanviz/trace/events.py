@@ -882,3 +882,44 @@ class AreaClassified(Event):
     case: str
     visible: int
     polygons: tuple[int, ...]
+
+
+# --- grid surfaces (scanviz.surfaces) ---------------------------------------------------
+
+
+@dataclass(frozen=True)
+class HorizonCurve(Event):
+    """Floating horizon: curve `curve` of the grid family, the `step`-th processed (0: nearest).
+
+    ``points`` is its screen polyline in grid order; ``pieces`` the (first,
+    last) sample index of each x-monotone piece it was split into.
+    """
+
+    kind: ClassVar[str] = "horizon_curve"
+    curve: int
+    step: int
+    family: str
+    points: tuple[tuple[float, float], ...]
+    pieces: tuple[tuple[int, int], ...]
+
+
+@dataclass(frozen=True)
+class HorizonColumn(Event):
+    """Floating horizon: the curve at screen column `x`, height `y`, against the horizons.
+
+    ``up`` and ``low`` are the horizons at `x` before this curve; ``flag`` is
+    +1 (y >= up), -1 (y <= low) or 0 (hidden); ``previous_flag`` the flag at
+    column x - 1 of the same piece (None at a piece's first column).
+    ``drawn`` holds the visible parts (x0, y0, x1, y1) of the segment from
+    column x - 1 to x.
+    """
+
+    kind: ClassVar[str] = "horizon_column"
+    curve: int
+    x: int
+    y: float
+    previous_flag: int | None
+    flag: int
+    up: float
+    low: float
+    drawn: tuple[tuple[float, float, float, float], ...]
