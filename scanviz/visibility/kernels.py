@@ -172,18 +172,26 @@ def draw_span(polygon, y, start, end, z, dzdx, span_value, span_dvdx, depth, ids
 
 
 @njit(cache=True, inline="always")
-def retire_and_step(aet, xs, edge_of, n_active, y, edge_value, edge_dvdy):
-    """edges_retired: drop edges whose ymax is passed; step x and values of the others one row."""
+def retire_edges(aet, xs, edge_of, n_active, y):
+    """edges_retired: drop edges whose ymax is passed, step the others' x one row; the count kept."""
     kept = 0
     for i in range(n_active):
         if aet[ROW_END, i] > y:
             if kept != i:
                 move_entry(aet, xs, edge_of, i, kept)
             advance(aet, xs, kept, True)
-            e = edge_of[kept]
-            for k in range(edge_value.shape[1]):
-                edge_value[e, k] += edge_dvdy[e, k]
             kept += 1
+    return kept
+
+
+@njit(cache=True, inline="always")
+def retire_and_step(aet, xs, edge_of, n_active, y, edge_value, edge_dvdy):
+    """`retire_edges`, then step the kept edges' values one row."""
+    kept = retire_edges(aet, xs, edge_of, n_active, y)
+    for i in range(kept):
+        e = edge_of[i]
+        for k in range(edge_value.shape[1]):
+            edge_value[e, k] += edge_dvdy[e, k]
     return kept
 
 

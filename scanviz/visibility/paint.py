@@ -82,21 +82,7 @@ def _paint_compiled(surfaces, pieces, mode, target) -> Painted:
         np.array([piece.polygon for piece in pieces], np.int64), starts, rows,
         np.array([piece.rows() for piece in pieces], np.int64).reshape(-1, 2), _KERNEL_MODE[mode], np.zeros((1, 1), np.int64) if target is None else target,
     )  # fmt: skip
-    return Painted(depth, ids, values, _stats(counts, len(pieces), "compiled"))
-
-
-def _stats(counts, pieces: int, path: str) -> ZBufferStats:
-    return ZBufferStats(
-        polygons=pieces,
-        polygons_drawn=int(counts[kernels.DRAWN]),
-        polygons_skipped=int(counts[kernels.SKIPPED]),
-        rows_scanned=int(counts[kernels.ROWS]),
-        spans=int(counts[kernels.SPANS]),
-        fragments=int(counts[kernels.FRAGMENTS]),
-        depth_passed=int(counts[kernels.PASSED]),
-        depth_failed=int(counts[kernels.FAILED]),
-        path=path,
-    )
+    return Painted(depth, ids, values, ZBufferStats.from_counts(counts, len(pieces), "compiled"))
 
 
 def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
@@ -146,4 +132,6 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
                     counts[kernels.FRAGMENTS] += 1
                     counts[kernels.PASSED if write else kernels.FAILED] += 1
         counts[kernels.DRAWN] += counts[kernels.FRAGMENTS] > fragments
-    return Painted(depth, ids, values, _stats(counts, len(pieces), "traced reference"))
+    return Painted(
+        depth, ids, values, ZBufferStats.from_counts(counts, len(pieces), "traced reference")
+    )

@@ -34,8 +34,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..raster.kernels import CEIL, ROW_END, ROW_START, WINDING, activate, advance, edge_table
-from .kernels import move_entry, plane_depth
+from ..raster.kernels import CEIL, ROW_END, ROW_START, WINDING, activate, edge_table
+from .kernels import move_entry, plane_depth, retire_edges
 
 ROUNDING = 16 * 2.0**-53  # 4 unit roundings for plane_depth's 4 operations, times a margin of 4
 SAFETY = 2.0**-50  # relative margin for the two roundings of `still_certain`
@@ -259,13 +259,7 @@ def step_edges(table, polygon_of, aet, xs, edge_of, n_active, entering, y, scale
 
     Returns (n_active, entering): the AET's size and the next edge of the table to enter.
     """
-    kept = 0
-    for i in range(n_active):
-        if aet[ROW_END, i] > y:
-            if kept != i:
-                move_entry(aet, xs, edge_of, i, kept)
-            advance(aet, xs, kept, True)
-            kept += 1
+    kept = retire_edges(aet, xs, edge_of, n_active, y)
     while entering < table.shape[1] and table[ROW_START, entering] == y:
         activate(table, entering, aet, xs, kept, y, scale, True, np.float64)
         edge_of[kept] = polygon_of[entering]

@@ -226,6 +226,21 @@ class ZBufferStats:
     depth_failed: int = 0
     path: str = "reference"
 
+    @classmethod
+    def from_counts(cls, counts, polygons: int, path: str) -> ZBufferStats:
+        """The stats of a compiled pass from its (7,) counts (`kernels.ROWS`, ...)."""
+        return cls(
+            polygons=polygons,
+            polygons_drawn=int(counts[kernels.DRAWN]),
+            polygons_skipped=int(counts[kernels.SKIPPED]),
+            rows_scanned=int(counts[kernels.ROWS]),
+            spans=int(counts[kernels.SPANS]),
+            fragments=int(counts[kernels.FRAGMENTS]),
+            depth_passed=int(counts[kernels.PASSED]),
+            depth_failed=int(counts[kernels.FAILED]),
+            path=path,
+        )
+
 
 @dataclass(frozen=True)
 class ZBufferResult:
@@ -343,17 +358,7 @@ def zbuffer(
             units, units / scale, polygons.z, channels, polygons.offsets, scale,
             width, height, polygons.value_count,
         )  # fmt: skip
-        stats = ZBufferStats(
-            polygons=polygons.count,
-            polygons_drawn=int(counts[kernels.DRAWN]),
-            polygons_skipped=int(counts[kernels.SKIPPED]),
-            rows_scanned=int(counts[kernels.ROWS]),
-            spans=int(counts[kernels.SPANS]),
-            fragments=int(counts[kernels.FRAGMENTS]),
-            depth_passed=int(counts[kernels.PASSED]),
-            depth_failed=int(counts[kernels.FAILED]),
-            path="compiled",
-        )
+        stats = ZBufferStats.from_counts(counts, polygons.count, "compiled")
         return ZBufferResult(depth, ids, values, stats)
     result = zbuffer_reference(
         polygons, units, bits, sample, channels, width, height, bool(perspective), tracer
