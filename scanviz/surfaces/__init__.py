@@ -1,6 +1,7 @@
 """Grid surfaces z = f(x, y) (Wang 1989, ch. 2): grids, the database format, meshes, the view,
-the floating horizon, and the Floating Perimeter Algorithm's viewing cases, facet enumeration and
-the edges each facet processes."""
+the floating horizon, and the Floating Perimeter Algorithm (viewing cases, facet enumeration, the
+edges each facet processes, the perimeter test, hidden lines and hidden surfaces), checked against
+the z-buffer."""
 
 from .enumeration import (
     Enumeration,
@@ -23,6 +24,15 @@ from .grid import (
     rogers_height,
 )
 from .horizon import HorizonResult, HorizonStats, floating_horizon
+from .perimeter import (
+    FacetOrder,
+    Perimeter,
+    PerimeterResult,
+    PerimeterStats,
+    facet_polygons,
+    floating_perimeter,
+)
+from .reference import ZBufferComparison, compare_with_zbuffer
 from .view import View
 
 __all__ = [
@@ -32,6 +42,11 @@ __all__ = [
     "GridSurface",
     "HorizonResult",
     "HorizonStats",
+    "FacetOrder",
+    "Perimeter",
+    "PerimeterResult",
+    "PerimeterStats",
+    "ZBufferComparison",
     "View",
     "gaussian",
     "gaussian_height",
@@ -40,10 +55,13 @@ __all__ = [
     "random_surface",
     "rogers",
     "rogers_height",
+    "compare_with_zbuffer",
     "enumerate_facets",
     "facet_edges",
+    "facet_polygons",
     "facet_sequence",
     "floating_horizon",
+    "floating_perimeter",
     "region_classes",
     "viewing_case",
     "vp_cell",

@@ -32,7 +32,8 @@ from ..limits import (
     format_size,
     read_bounded,
 )
-from ..scene.model import Mesh
+from ..scene.model import Light, Material, Mesh, Scene, SceneObject
+from .view import View
 
 _BYTES_PER_POINT = 64  # z, the two sampling coordinates and f's temporaries
 _BYTES_PER_TRIANGLE = 400  # Mesh keeps one index array per face (scene/builtin.py measured it)
@@ -461,6 +462,83 @@ class GridSurface:
 
     # --- the mesh -------------------------------------------------------------------------
 
+    def points(self) -> np.ndarray:
+        """The grid points (x[i], y[j], z[j, i]) as an (Nx Ny, 3) array, in database order.
+
+        Point ``j * Nx + i`` is grid point (column i, row j): the vertex order of
+        `to_mesh` and of Table 2-1.
+
+        >>> GridSurface([0.0, 1.0], [0.0, 2.0], [[0, 1], [2, 3]]).points().tolist()
+        [[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [0.0, 2.0, 2.0], [1.0, 2.0, 3.0]]
+        """
+        grid_x, grid_y = np.meshgrid(self.x, self.y)
+        return np.stack([grid_x, grid_y, self.z], axis=-1).reshape(-1, 3)
+
+    def scene(
+        self,
+        view: View,
+        width: int,
+        height: int,
+        *,
+        material: Material | None = None,
+        smooth: bool = True,
+        background: tuple[float, float, float] = (1.0, 1.0, 1.0),
+    ) -> Scene:
+        """The scanviz `Scene` of this surface as the Floating Perimeter Algorithm sees it.
+
+        The mesh of `to_mesh` (open, so nothing is culled) and the camera
+        `View.camera` fits to the grid points: ``render(scene, width,
+        height).polygon // 2`` is the facet (grid element) index k = r (Nx - 1) + c
+        of each pixel, the z-buffer answer to compare the FPA with. The fitted
+        points lie half a pixel inside the window, so the clipper cuts no
+        triangle and keeps the polygon numbering. One white directional light
+        shines straight down (-z).
+
+        Parameters
+        ----------
+        view : View
+        width, height : int
+            Raster size, each at least 2.
+        material : Material, optional
+            The surface's material (default: `Material()`).
+        smooth : bool
+            Vertex normals averaged across facets (True) or flat facets.
+        background : RGB
+            Default white, as the hidden-line drawings.
+
+        Raises
+        ------
+        TypeError
+            If `view` is not a View.
+        ValueError
+            As `View.camera` (a grid point behind a perspective viewpoint, a
+            raster under 2 x 2).
+
+        Examples
+        --------
+        >>> from scanviz import render
+        >>> surface = GridSurface.from_function(lambda x, y: x * y, (0, 1), (0, 1), 3, 3)
+        >>> result = render(surface.scene(View((0.5, -3, 3), (0, 1, -1)), 12, 12), 12, 12)
+        >>> sorted(set((result.visibility.polygon[result.visibility.polygon >= 0] // 2).tolist()))
+        [0, 1, 2, 3]
+        """
+        if not isinstance(view, View):
+            raise TypeError(f"'view' must be a scanviz.surfaces.View; got {type(view).__name__}")
+        points = self.points()
+        camera = view.camera(width, height, points)
+        obj = SceneObject(
+            mesh=self.to_mesh(smooth=smooth),
+            material=Material() if material is None else material,
+            name="grid surface",
+        )
+        return Scene(
+            objects=(obj,),
+            camera=camera,
+            lights=(Light(direction=(0.0, 0.0, -1.0)),),
+            background=tuple(background),
+            name=f"{self.nx}x{self.ny} grid surface",
+        )
+
     def to_mesh(self, *, smooth: bool = True) -> Mesh:
         """Two triangles per grid element, in facet order, as an open `Mesh`.
 
@@ -490,8 +568,7 @@ class GridSurface:
             _BYTES_PER_TRIANGLE * 2 * self.facets,
             f"the mesh of a {self.nx}x{self.ny} grid surface ({2 * self.facets:,} triangles)",
         )
-        grid_x, grid_y = np.meshgrid(self.x, self.y)
-        positions = np.stack([grid_x, grid_y, self.z], axis=-1).reshape(-1, 3)
+        positions = self.points()
         row, column = np.divmod(np.arange(self.facets), self.nx - 1)
         v = row * self.nx + column  # lower-left corner of element k
         below = np.stack([v, v + 1, v + self.nx + 1], axis=1)

@@ -19,8 +19,12 @@ Screen
 A uniform scale and a translation fit the view-plane bounding box of the
 fitted points into [0, width - 1] x [0, height - 1], centred on the other
 axis: origin bottom-left, y up (DESIGN §2), and every fitted point rounds to
-a pixel of the raster, as the FPA's perimeter arrays need. `View.camera`
-gives the scanviz `Camera` with the same display coordinates, for the z-buffer.
+a pixel of the raster, as the FPA's perimeter arrays need. Screen
+coordinates count pixels' sample points: `View.camera` gives the scanviz
+`Camera` whose display coordinates are screen + 1/2, so ``render(...,
+sample="center")`` samples pixel (x, y) at screen (x, y), where the FPA tests
+it, and fitted points keep half a pixel from the window's edges (the
+clipper never cuts a fitted polygon).
 """
 
 from __future__ import annotations
@@ -199,11 +203,14 @@ class View:
         return (plane - centre) * scale + room / 2, depth
 
     def camera(self, width: int, height: int, fit: object) -> Camera:
-        """The scanviz `Camera` whose display coordinates are `screen_from_world`'s.
+        """The scanviz `Camera` whose display coordinates are `screen_from_world`'s plus 1/2.
 
         For the z-buffer reference: ``render`` of a scene with this camera puts
-        every world point where ``screen_from_world(points, width, height, fit)``
-        does. Near and far enclose the fitted points' depths with a margin
+        every world point half a pixel up and right of where
+        ``screen_from_world(points, width, height, fit)`` does, so pixel (x, y)
+        is sampled at screen (x, y) with ``sample="center"`` and at
+        (x - 1/2, y - 1/2) with the default corner sampling, and every fitted
+        point lies at least half a pixel inside the window. Near and far enclose the fitted points' depths with a margin
         (perspective: half the least and twice the largest depth; parallel: the
         depth range widened by its length, or by 1 if it is flat), so nothing
         fitted is clipped.
@@ -225,14 +232,14 @@ class View:
         --------
         >>> square = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
         >>> View((0.5, 0.5, 2), (0, 0, -1)).camera(5, 3, square).window  # display 0..5, 0..3
-        (-0.5, 0.75, -0.25, 0.5)
+        (-0.625, 0.625, -0.375, 0.375)
         """
         width, height = _check_size(width, height, least=2)
         fit = as_points("fit", fit, (3,), 1)
         plane, depth = self._project("fit", fit)
         centre, scale, room = _fit(plane, width, height)
         size = np.array([width, height])
-        low = centre - room / (2 * scale)  # where screen 0 lands on the view plane
+        low = centre - (room / 2 + 0.5) / scale  # where screen -1/2 (display 0) lands
         high = low + size / scale  # the viewport maps the window to [0, width] x [0, height]
         perspective = self.projection == "perspective"
         if perspective:

@@ -164,15 +164,19 @@ def test_bad_points_are_named():
     ),
     st.sampled_from(["perspective", "parallel"]),
 )
-def test_the_camera_puts_points_where_screen_from_world_does(
+def test_the_camera_puts_points_half_a_pixel_past_screen_from_world(
     points, width, height, point_and_direction, projection
 ):
     view = View(*point_and_direction, projection=projection)
     camera = view.camera(width, height, points)
     display = vertex_tables(camera, points, width, height, subpixel_bits=None)["display"]
     screen, _ = view.screen_from_world(points, width, height)
-    np.testing.assert_allclose(display[:, :2], screen, atol=1e-7 * max(width, height))
+    np.testing.assert_allclose(display[:, :2], screen + 0.5, atol=1e-7 * max(width, height))
     assert ((display[:, 2] > 0) & (display[:, 2] < 1)).all()  # between near and far
+    inside = (display[:, :2] >= 0.5 - 1e-7 * max(width, height)) & (
+        display[:, :2] <= np.array([width, height]) - 0.5 + 1e-7 * max(width, height)
+    )
+    assert inside.all()  # half a pixel from the window's edges: nothing fitted is clipped
 
 
 def test_camera_needs_two_pixels_per_axis():
