@@ -1,7 +1,7 @@
 """The conformance suite: the table of categories, the runner and its one-line output.
 
 Each category is a small function returning an `Outcome`; they live in `raster_checks`, `input_checks`, `coverage_checks`,
-`pipeline_checks` and `visibility_checks`; this module lists them, runs them and prints one line
+`pipeline_checks`, `visibility_checks` and `surfaces_checks`; this module lists them, runs them and prints one line
 each. Every category builds its cases from a seeded generator, runs the public
 entry points and compares them with an exact oracle (`scanviz.conformance.exact`)
 or with an invariant that must hold exactly. ``docs/conformance.md`` lists
@@ -30,6 +30,7 @@ from .raster_checks import (
     watertight_fans,
     winding_and_parity,
 )
+from .surfaces_checks import fpa_vs_zbuffer
 from .visibility_checks import visibility_vs_zbuffer
 
 CATEGORIES: dict[str, Callable[[np.random.Generator], Outcome]] = {
@@ -49,6 +50,7 @@ CATEGORIES: dict[str, Callable[[np.random.Generator], Outcome]] = {
     "traced == compiled": traced_equals_compiled,
     "built-in scenes": builtin_scenes,
     "visibility vs z-buffer": visibility_vs_zbuffer,
+    "FPA vs z-buffer": fpa_vs_zbuffer,
 }
 
 
