@@ -30,6 +30,7 @@ class table. The grid has Nx(Ny-1) + Ny(Nx-1) edges (spec §1.1).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -45,22 +46,35 @@ class FacetEdges:
 
     Attributes
     ----------
-    per_facet : tuple of tuples of (str, int, int)
-        ``per_facet[n - 1]`` holds the edges facet number n processes, each
-        ``("h" | "v", row, column)``, in the order T, B, L, R.
-    sides : tuple of str
-        ``sides[n - 1]`` names the sides facet n processes, e.g. ``"TLR"``.
     edges : (E, 3) ndarray of int64, read-only
         Every edge of the grid once, in processing order, as (kind, row,
         column) with kind 0 for "h" and 1 for "v".
     facet : (E,) ndarray of int64, read-only
         The number 1..F of the facet that processes each edge.
+    taken : (F, 4) ndarray of bool, read-only
+        ``taken[n - 1]`` marks the sides T, B, L, R facet number n processes.
+    per_facet : tuple of tuples of (str, int, int)
+        ``per_facet[n - 1]`` holds the edges facet number n processes, each
+        ``("h" | "v", row, column)``, in the order T, B, L, R (built on first use).
+    sides : tuple of str
+        ``sides[n - 1]`` names the sides facet n processes, e.g. ``"TLR"`` (built on first use).
     """
 
-    per_facet: tuple[tuple[tuple[str, int, int], ...], ...]
-    sides: tuple[str, ...]
     edges: np.ndarray
     facet: np.ndarray
+    taken: np.ndarray
+
+    @cached_property
+    def per_facet(self) -> tuple[tuple[tuple[str, int, int], ...], ...]:
+        counts = self.taken.sum(axis=1)
+        return tuple(
+            tuple((KINDS[kind], int(row), int(column)) for kind, row, column in block.tolist())
+            for block in np.split(self.edges, np.cumsum(counts)[:-1])
+        )
+
+    @cached_property
+    def sides(self) -> tuple[str, ...]:
+        return tuple("".join(SIDES[i] for i in np.flatnonzero(facet)) for facet in self.taken)
 
 
 def _check_enumeration(enumeration: object) -> Enumeration:
@@ -189,14 +203,8 @@ def facet_edges(enumeration: Enumeration) -> FacetEdges:
     taken = processed_sides(order)[rows, columns]  # (F, 4), facets in processing order
     edges = side_edges(*order.shape)[rows, columns][taken]
     counts = taken.sum(axis=1)
-    per_facet = tuple(
-        tuple((KINDS[kind], int(row), int(column)) for kind, row, column in block.tolist())
-        for block in np.split(edges, np.cumsum(counts)[:-1])
-    )
-    sides = tuple("".join(SIDES[i] for i in np.flatnonzero(facet)) for facet in taken)
     return FacetEdges(
-        per_facet=per_facet,
-        sides=sides,
         edges=_read_only(edges.astype(np.int64)),
         facet=_read_only(np.repeat(np.arange(1, order.size + 1, dtype=np.int64), counts)),
+        taken=_read_only(taken),
     )

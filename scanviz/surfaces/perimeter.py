@@ -439,7 +439,7 @@ def _traced_pass(enumeration, edges, points, point_edge, perimeter, tracer) -> n
     width, height = len(perimeter.top), len(perimeter.right)
     visible, on_perimeter = np.zeros(len(points), bool), np.zeros(len(points), bool)
     bounds = np.searchsorted(point_edge, np.arange(len(edges.edges) + 1))
-    edge_rows = np.searchsorted(edges.facet, np.arange(1, len(edges.per_facet) + 2))
+    edge_rows = np.searchsorted(edges.facet, np.arange(1, len(edges.taken) + 2))
     for number, (row, column) in enumerate(enumeration.sequence.tolist(), start=1):
         if tracer.wants("perimeter_facet"):
             tracer.emit(
@@ -539,7 +539,7 @@ def _lines_result(enumeration, edges, points, flags, point_edge, perimeter, widt
     all_visible = int((per_edge_visible == per_edge_points).sum())
     all_hidden = int((per_edge_visible == 0).sum())
     stats = PerimeterStats(
-        facets=len(edges.per_facet),
+        facets=len(edges.taken),
         edges=len(edges.edges),
         points=len(points),
         visible=int(visible.sum()),

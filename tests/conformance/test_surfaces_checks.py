@@ -19,8 +19,8 @@ def test_an_edge_processed_twice_is_caught(monkeypatch):
 
     def twice(enumeration):
         e = edges(enumeration)
-        doubled = np.vstack([e.edges, e.edges[:1]])
-        return FacetEdges(e.per_facet, e.sides, doubled, np.append(e.facet, e.facet[-1]))
+        doubled = np.vstack([e.edges, e.edges[-1:]])  # the last facet's last edge again
+        return FacetEdges(doubled, np.append(e.facet, e.facet[-1]), e.taken)
 
     monkeypatch.setattr(perimeter, "facet_edges", twice)
     outcome = fpa_vs_zbuffer(np.random.default_rng(0))
