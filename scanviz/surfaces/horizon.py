@@ -33,10 +33,11 @@ from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from ..conventions import check_raster_size, short_repr
 from ..raster.api import as_tracer
-from ..raster.lines import midpoint_line
+from ..raster.lines import paint_lines
 from ..trace.events import HorizonColumn, HorizonCurve
 from .grid import GridSurface
 from .view import View
@@ -155,18 +156,23 @@ def floating_horizon(
     )
     order = tuple(int(k) for k in np.argsort(np.abs(planes - viewpoint), kind="stable"))
     up, low = np.full(width, -np.inf), np.full(width, np.inf)
-    drawn: list[tuple[float, float, float, float]] = []
-    counts: Counter = Counter()
-    for step, curve in enumerate(order):
-        _process_curve(curve, step, family, curves[curve], up, low, drawn, counts, tracer)
-    segments = np.array(drawn, dtype=np.float64).reshape(-1, 4)
+    if tracer is None:
+        polylines = np.ascontiguousarray(curves[list(order)], dtype=np.float64)
+        segments, tally = _horizon_pass(polylines, up, low)
+        counts = Counter(dict(zip(("pieces", "columns", *FLAG_PAIRS), tally.tolist(), strict=True)))
+    else:
+        drawn: list[tuple[float, float, float, float]] = []
+        counts = Counter()
+        for step, curve in enumerate(order):
+            _process_curve(curve, step, family, curves[curve], up, low, drawn, counts, tracer)
+        segments = np.array(drawn, dtype=np.float64).reshape(-1, 4)
     lines = paint_segments(segments, width, height)
     image = np.repeat(np.where(lines, 0.0, 1.0)[..., None], 3, axis=-1)
     stats = HorizonStats(
         curves=len(order),
         pieces=counts.pop("pieces", 0),
         columns=counts.pop("columns", 0),
-        segments=len(drawn),
+        segments=len(segments),
         intersections={pair: counts[pair] for pair in FLAG_PAIRS},
     )
     return HorizonResult(lines, image, segments, up, low, order, stats)
@@ -319,6 +325,89 @@ def _scan_piece(curve, columns, ys, up, low, drawn, counts, tracer) -> None:
     counts["columns"] += len(columns)
 
 
+@njit(cache=True)
+def _flag(y, up, low):  # pragma: no cover - compiled; `flag`
+    if y >= up:
+        return 1
+    return -1 if y <= low else 0
+
+
+@njit(cache=True)
+def _cut(x0, y0, x1, y1, h0, h1):  # pragma: no cover - compiled; `crossing`
+    above_start, above_end = y0 - h0, y1 - h1
+    if not np.isfinite(above_start):
+        t = 0.0
+    elif not np.isfinite(above_end):
+        t = 1.0
+    else:
+        t = above_start / (above_start - above_end) if above_start != above_end else 0.0
+    return x0 + t * (x1 - x0), y0 + t * (y1 - y0)
+
+
+@njit(cache=True)
+def _horizon_pass(curves, up, low):  # pragma: no cover - compiled
+    """Steps 3-5 over every curve (nearest first), as `_process_curve` does, without events.
+
+    Returns the drawn segments (K, 4) and the counts: pieces, columns, then the
+    intersections of each flag pair in `FLAG_PAIRS` order.
+    """
+    width = up.shape[0]
+    drawn = []
+    tally = np.zeros(11, np.int64)
+    for c in range(curves.shape[0]):
+        xs, ys = curves[c, :, 0], curves[c, :, 1]
+        new_up, new_low = up.copy(), low.copy()
+        first, direction = 0, 0.0
+        n = xs.shape[0]
+        for k in range(n):
+            sign = np.sign(xs[k + 1] - xs[k]) if k < n - 1 else 0.0
+            reverses = k < n - 1 and sign != 0.0 and direction != 0.0 and sign != direction
+            if not (reverses or k == n - 1):
+                direction = sign if sign != 0.0 else direction
+                continue
+            last = k  # the piece first..last (the turning sample is in both pieces)
+            px, py = xs[first : last + 1], ys[first : last + 1]
+            if px[-1] < px[0]:
+                px, py = px[::-1].copy(), py[::-1].copy()
+            start = max(int(np.ceil(px[0])), 0)
+            stop = min(int(np.floor(px[-1])), width - 1)
+            tally[0] += 1
+            previous_flag, previous_y = 2, 0.0  # 2: no previous column in this piece
+            for x in range(start, stop + 1):
+                y = np.interp(float(x), px, py)
+                flag_now = _flag(y, up[x], low[x])
+                if previous_flag != 2:
+                    if previous_flag == flag_now:
+                        if flag_now != 0:
+                            drawn.append((x - 1.0, previous_y, float(x), y))
+                    else:
+                        pair = (1 - previous_flag) * 3 + (1 - flag_now)
+                        if previous_flag != 0:
+                            h0 = up[x - 1] if previous_flag == 1 else low[x - 1]
+                            h1 = up[x] if previous_flag == 1 else low[x]
+                            cx, cy = _cut(x - 1.0, previous_y, float(x), y, h0, h1)
+                            drawn.append((x - 1.0, previous_y, cx, cy))
+                            tally[2 + pair] += 1
+                        if flag_now != 0:
+                            h0 = up[x - 1] if flag_now == 1 else low[x - 1]
+                            h1 = up[x] if flag_now == 1 else low[x]
+                            cx, cy = _cut(x - 1.0, previous_y, float(x), y, h0, h1)
+                            drawn.append((cx, cy, float(x), y))
+                            tally[2 + pair] += 1
+                previous_flag, previous_y = flag_now, y
+                new_up[x] = max(new_up[x], y)
+                new_low[x] = min(new_low[x], y)
+            tally[1] += max(stop - start + 1, 0)
+            first = k
+            direction = sign if sign != 0.0 else direction
+        up[:] = new_up  # step 5, after the whole curve
+        low[:] = new_low
+    segments = np.empty((len(drawn), 4))
+    for i in range(len(drawn)):
+        segments[i, 0], segments[i, 1], segments[i, 2], segments[i, 3] = drawn[i]
+    return segments, tally
+
+
 def paint_segments(segments: np.ndarray, width: int, height: int) -> np.ndarray:
     """The (height, width) bool raster of segments, endpoints rounded, by the midpoint line.
 
@@ -326,8 +415,4 @@ def paint_segments(segments: np.ndarray, width: int, height: int) -> np.ndarray:
     array([[0, 0, 1],
            [1, 1, 0]])
     """
-    lines = np.zeros((height, width), dtype=bool)
-    for x0, y0, x1, y1 in np.rint(segments).astype(np.int64).tolist():
-        xs, ys = midpoint_line(x0, y0, x1, y1)
-        lines[ys, xs] = True
-    return lines
+    return paint_lines(np.rint(segments).astype(np.int64).reshape(-1, 4), width, height)

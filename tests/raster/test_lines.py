@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from scanviz import Recorder, Trace, midpoint_line
 from scanviz.conventions import COORD_LIMIT
-from scanviz.raster.lines import octant
+from scanviz.raster.lines import octant, paint_lines
 
 
 def pixels(*endpoints, trace=None) -> list[tuple[int, int]]:
@@ -248,3 +248,29 @@ def test_midpoint_line_takes_its_decisions_from_the_step_table():
         assert pixels(3, 1, 1, 5) == [(3, 1), (2, 2), (1, 3), (0, 4), (-1, 5)]
     assert calls[:2] == [(2, 6, 2), (2, 6, 2)]  # d = 6 - 2 * 2, in the first-octant frame
     assert len(calls) == 6 + 4  # one decision per pixel but the last
+
+
+@settings(max_examples=50)
+@given(
+    st.lists(st.tuples(*[st.integers(-12, 40)] * 4), min_size=0, max_size=12),
+    st.integers(0, 30),
+    st.integers(0, 30),
+)
+def test_paint_lines_draws_the_pixels_of_midpoint_line(ends, width, height):
+    want = np.zeros((height, width), bool)
+    for x0, y0, x1, y1 in ends:
+        xs, ys = midpoint_line(x0, y0, x1, y1)
+        inside = (xs >= 0) & (xs < width) & (ys >= 0) & (ys < height)
+        want[ys[inside], xs[inside]] = True
+    np.testing.assert_array_equal(
+        paint_lines(np.array(ends, np.int64).reshape(-1, 4), width, height), want
+    )
+
+
+def test_paint_lines_rejects_bad_ends_and_sizes():
+    with pytest.raises(ValueError, match="'ends' must be a \\(K, 4\\) array of ints"):
+        paint_lines([[0.5, 0, 1, 1]], 4, 4)
+    with pytest.raises(ValueError, match="within"):
+        paint_lines([[0, 0, COORD_LIMIT + 1, 0]], 4, 4)
+    with pytest.raises(ValueError, match="'height' must be an int >= 0"):
+        paint_lines([[0, 0, 1, 1]], 4, -1)
