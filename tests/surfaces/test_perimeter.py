@@ -17,6 +17,7 @@ from scanviz.surfaces import (
     View,
     compare_with_zbuffer,
     facet_polygons,
+    floating_horizon,
     floating_perimeter,
     gaussian,
     polynomial,
@@ -310,6 +311,8 @@ def test_degenerate_surfaces_and_views_render(name, view, size):
     surface = DEGENERATE[name]
     lines = floating_perimeter(surface, view, *size)
     assert lines.lines.shape == size[::-1] and lines.stats.edges == surface.edges
+    for family in ("x", "y"):
+        assert floating_horizon(surface, view, *size, family=family).lines.shape == size[::-1]
     if min(size) >= 2:
         shaded = floating_perimeter(surface, view, *size, "surface")
         assert shaded.facet.shape == size[::-1] and np.isfinite(shaded.image).all()
@@ -361,3 +364,20 @@ def test_a_diagonal_notch_is_a_structural_hole():
     column = earlier.intersection(shapely.LineString([(183, -1), (183, 201)])).bounds
     assert row[0] < 183 < row[2] and column[1] < 85 < column[3]  # yet enclosed in both spans
     assert not c.fpa.visible[i] and c.zbuffer_visible[i]
+
+
+def test_the_nonuniform_grid_of_the_dissertation_is_drawn_and_shaded():
+    from scanviz.surfaces import polynomial_height
+
+    surface = GridSurface.nonuniform(
+        polynomial_height, (-1.2, 1.2), (-1.2, 1.2), 66, 42, 3, 3, 0.23
+    )
+    assert (surface.nx, surface.ny) == (28, 28)
+    view = View((4.0, -5.0, 3.0), (-4.0, 5.0, -3.5))
+    lines = floating_perimeter(surface, view, 120, 100)
+    flags, _ = fig_2_4(surface, view, 120, 100)
+    assert lines.visible.tolist() == [v for _, v, _ in flags]
+    assert lines.stats.edges == surface.edges == 2 * 28 * 27
+    shaded = floating_perimeter(surface, view, 120, 100, "surface", shading="gouraud")
+    z = render(surface.scene(view, 120, 100), 120, 100, shading="gouraud")
+    np.testing.assert_array_equal(shaded.facet, np.where(z.polygon >= 0, z.polygon // 2, -1))
