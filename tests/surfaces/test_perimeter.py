@@ -381,3 +381,11 @@ def test_the_nonuniform_grid_of_the_dissertation_is_drawn_and_shaded():
     shaded = floating_perimeter(surface, view, 120, 100, "surface", shading="gouraud")
     z = render(surface.scene(view, 120, 100), 120, 100, shading="gouraud")
     np.testing.assert_array_equal(shaded.facet, np.where(z.polygon >= 0, z.polygon // 2, -1))
+
+
+def test_the_trace_round_trips_through_json():
+    from scanviz.trace import Trace
+
+    trace = floating_perimeter(smooth(4), CORNER, 24, 20, trace=True).trace
+    again = Trace.from_json(trace.to_json())
+    assert again == trace and again[1].edges[0].kind in ("h", "v")
