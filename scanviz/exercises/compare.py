@@ -20,7 +20,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..trace.events import Event
+from ..trace.events import Event, GridEdge
 from .plain import Opaque, Record
 
 MISSING = object()  # a list item or field that one side lacks
@@ -213,6 +213,10 @@ def where(event: Event) -> str:
     step = getattr(event, "step", None)
     if isinstance(step, int):
         parts.append(f"step {step}")
+    facet, edge = getattr(event, "facet", None), getattr(event, "edge", None)
+    if isinstance(facet, int) and not isinstance(facet, bool):  # the floating perimeter's events
+        on = f" edge {edge.kind}({edge.row}, {edge.column})" if isinstance(edge, GridEdge) else ""
+        parts.append(f"facet {facet}{on}")
     return ", ".join(parts)
 
 
