@@ -11,6 +11,15 @@ from .scan import ScanConversionView, scan_conversion_stepper
 from .scanline_visibility import ScanlineVisibilityView, scanline_visibility_stepper
 from .static import plot_scan
 from .stepper import Stepper, View, figure_widget, redraw_time, refresh_figure
+from .surfaces import (
+    HorizonView,
+    PerimeterView,
+    horizon_stepper,
+    perimeter_stepper,
+    plot_grid,
+    plot_mismatch,
+    plot_results,
+)
 from .viewing import ViewingPipelineView
 from .visibility import algorithm_names, compare_visibility, taxonomy_table
 from .warnock import WarnockView, warnock_stepper
@@ -21,10 +30,12 @@ __all__ = [
     "BspView",
     "DepthSortView",
     "FragmentInsertionView",
+    "HorizonView",
     "InterpolationView",
     "LineView",
     "PackerView",
     "PainterView",
+    "PerimeterView",
     "PolygonEditor",
     "ScanConversionView",
     "ScanlineVisibilityView",
@@ -39,10 +50,15 @@ __all__ = [
     "compare_visibility",
     "depth_sort_stepper",
     "figure_widget",
+    "horizon_stepper",
     "interpolation_stepper",
     "line_stepper",
     "painter_stepper",
+    "perimeter_stepper",
     "plot_clip",
+    "plot_grid",
+    "plot_mismatch",
+    "plot_results",
     "plot_scan",
     "redraw_time",
     "refresh_figure",

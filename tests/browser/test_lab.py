@@ -4,8 +4,10 @@ The test starts JupyterLab on a free localhost port over a temporary copy of
 ``notebooks/``, opens lesson 02, runs all cells from the Run menu, then clicks
 the scan-conversion stepper's Next button and checks that the active edge table
 shown beside it changes; the same for lesson 07 and its depth-sort stepper
-(the pair being tested changes). Screenshots go to ``tests/browser/screenshots/``
-(their paths are printed; ``pytest -rP`` shows them).
+(the pair being tested changes) and for lesson 08 and its floating-perimeter
+stepper (the facet or edge described changes). Screenshots go to
+``tests/browser/screenshots/`` (their paths are printed; ``pytest -rP`` shows
+them).
 
 The browser is Debian's chromium, driven by Playwright (no browser downloads).
 The test skips only when no chromium can be found; every other problem fails.
@@ -30,6 +32,9 @@ LESSON = "02_scan_conversion.ipynb"
 VISIBILITY_LESSON = "07_visibility.ipynb"
 DEPTH_SORT_TITLE = "depth sort: one pair, swap or split per step"  # DepthSortView's heading
 PAIR_CAPTION = re.compile(r"no pair under test|S = \S+, S' = \S+")  # DepthSortView.settled
+SURFACES_LESSON = "08_grid_surfaces.ipynb"
+PERIMETER_TITLE = "floating perimeter: one facet, edge or update per step"  # perimeter_stepper's
+PERIMETER_CAPTION = re.compile(r"^\s*(start:|viewing case \d|facet \d+)")  # PerimeterView.text
 EXERCISE = "exercises/05_span_rule.ipynb"
 SCREENSHOTS = Path(__file__).resolve().parent / "screenshots"
 CHROMIUM_FLAGS = [
@@ -234,6 +239,20 @@ def test_visibility_lesson_runs_and_its_depth_sort_stepper_steps(lab_url, browse
     page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
     _screenshot(page, f"{Path(VISIBILITY_LESSON).stem}-stepped.png")
     assert pair.inner_text() != before, f"the pair tested did not change in {NEXT_CLICKS} steps"
+
+
+def test_grid_surfaces_lesson_08_runs_and_its_perimeter_stepper_steps(lab_url, browser):
+    page = browser.new_page()
+    _open(page, lab_url, SURFACES_LESSON)
+    _run_all_cells(page, Path(SURFACES_LESSON).stem)
+    stepper = page.locator(".jp-OutputArea-output", has_text=PERIMETER_TITLE).first
+    stepper.scroll_into_view_if_needed()
+    caption = stepper.locator(".widget-html-content").filter(has_text=PERIMETER_CAPTION).first
+    before = caption.inner_text()
+    _click_next(page, stepper, NEXT_CLICKS)
+    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
+    _screenshot(page, f"{Path(SURFACES_LESSON).stem}-stepped.png")
+    assert caption.inner_text() != before, f"the step shown did not change in {NEXT_CLICKS} steps"
 
 
 def _answer_with(path: Path, source: str) -> None:
