@@ -206,18 +206,25 @@ def _cmd_fill(args: argparse.Namespace) -> None:
     print(f"{args.output}: {width}x{height}, {int(result.mask.sum())} samples covered")
 
 
-_VISIBILITY_OPTIONS = ("sizes", "width", "height", "repeat", "algorithms", "budget")
+_BENCH_OPTIONS = {
+    "visibility": ("sizes", "width", "height", "repeat", "algorithms", "budget"),
+    "surfaces": ("grids", "images", "repeat", "algorithms"),
+}
+"""The options of the suites that take any: a suite gets those given of its own."""
 
 
 def _cmd_bench(args: argparse.Namespace) -> None:
     from .bench import run
 
-    options = {name: getattr(args, name) for name in _VISIBILITY_OPTIONS}
-    if args.suite != "visibility":
-        given = [f"--{name}" for name, value in options.items() if value is not None]
-        if given:
-            raise ValueError(f"{', '.join(given)}: options of 'bench visibility' only")
-        options = {}
+    own = _BENCH_OPTIONS.get(args.suite, ())
+    others = dict.fromkeys(n for names in _BENCH_OPTIONS.values() for n in names if n not in own)
+    given = [name for name in others if getattr(args, name) is not None]
+    if given:
+        suites = [s for s, names in _BENCH_OPTIONS.items() if set(given) <= set(names)]
+        takers = " or ".join(f"'bench {s}'" for s in suites) or "different bench suites"
+        flags = ", ".join(f"--{name}" for name in given)
+        raise ValueError(f"{flags}: options of {takers} only")
+    options = {name: getattr(args, name) for name in own if getattr(args, name) is not None}
     run(args.suite, quick=args.quick, plot=args.plot, **options)
 
 
@@ -461,22 +468,29 @@ def _add_render_options(render: argparse.ArgumentParser) -> None:
     render.add_argument("--plan", action="store_true", help="print which stages run and why")
 
 
-def _add_visibility_bench_options(bench: argparse.ArgumentParser) -> None:
+def _add_suite_bench_options(bench: argparse.ArgumentParser) -> None:
     bench.add_argument(
         "--sizes", type=_counts, metavar="N,N,...", help="visibility: random triangles per scene"
     )
     count = {"type": _at_least_one, "metavar": "N"}
     bench.add_argument("--width", **count, help="visibility: raster width (256)")
     bench.add_argument("--height", **count, help="visibility: raster height (256)")
-    bench.add_argument("--repeat", **count, help="visibility: runs per scene (3)")
+    bench.add_argument("--repeat", **count, help="visibility, surfaces: runs per scene (3)")
     bench.add_argument(
         "--algorithms",
         type=_names,
         metavar="NAME,NAME,...",
-        help="visibility: which algorithms besides the z-buffer (default: all)",
+        help="visibility: which algorithms besides the z-buffer (default: all); "
+        "surfaces: which of fha, fpa-lines, fpa-flat, fpa-phong, zbuf-flat, zbuf-phong",
     )
     bench.add_argument(
         "--budget", type=_seconds, metavar="SECONDS", help="visibility: time per algorithm (30)"
+    )
+    bench.add_argument(
+        "--grids", type=_counts, metavar="N,N,...", help="surfaces: grid points per side (10..200)"
+    )
+    bench.add_argument(
+        "--images", type=_counts, metavar="N,N,...", help="surfaces: image sides (100..600)"
     )
 
 
@@ -510,9 +524,9 @@ def build_parser() -> argparse.ArgumentParser:
         "--plot",
         metavar="PATH",
         help="coverage: error-vs-time plot file (default coverage.png); "
-        "visibility: time-vs-polygons plot file (default: none)",
+        "visibility: time-vs-polygons, surfaces: time-vs-grid and -image plot file (default: none)",
     )
-    _add_visibility_bench_options(bench)
+    _add_suite_bench_options(bench)
     bench.set_defaults(run=_cmd_bench)
     conformance = commands.add_parser(
         "conformance", help="the stress suite: PASS/FAIL per category"

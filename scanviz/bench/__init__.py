@@ -3,7 +3,9 @@
 Each suite prints a table of run times (and, where it applies, errors) and
 measures installed peers (OpenCV, ...) on the same scenes in the same run;
 ``grading`` prints how many students a class is graded at per minute;
-``visibility`` times every visibility algorithm against the z-buffer.
+``visibility`` times every visibility algorithm against the z-buffer;
+``surfaces`` times the floating horizon, the Floating Perimeter Algorithm and
+the z-buffer on grid surfaces and prints Wang's Table 2-4 storage beside ours.
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ import statistics
 import time
 from collections.abc import Callable
 
-SUITES = ("raster", "render", "coverage", "grading", "visibility")
+SUITES = ("raster", "render", "coverage", "grading", "visibility", "surfaces")
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -30,8 +32,9 @@ def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float 
 def run(suite: str, *, quick: bool = False, plot: str | None = None, **options: object) -> None:
     """Run one benchmark suite and print its table.
 
-    `plot` is where "coverage" (default coverage.png) or "visibility"
-    (default: no plot) saves its plot; `options` go to `run_visibility`.
+    `plot` is where "coverage" (default coverage.png), "visibility" or
+    "surfaces" (default: no plot) saves its plot; `options` go to
+    `run_visibility` or `run_surfaces`.
     """
     if suite == "raster":
         from .raster import run_raster
@@ -53,5 +56,9 @@ def run(suite: str, *, quick: bool = False, plot: str | None = None, **options: 
         from .visibility import run_visibility
 
         run_visibility(quick=quick, plot=plot, **options)
+    elif suite == "surfaces":
+        from .surfaces import run_surfaces
+
+        run_surfaces(quick=quick, plot=plot, **options)
     else:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")
