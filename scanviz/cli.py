@@ -1,4 +1,4 @@
-"""Command line: ``python -m scanviz trace|fill|render|bench|conformance|exercises|check|grade``.
+"""Command line: ``python -m scanviz trace|fill|render|surface|bench|conformance|exercises|check|grade``.
 
 Bad input exits with status 2 and exactly one line on stderr, never a
 traceback: a ValueError, TypeError or OSError (a refused resource limit is a
@@ -268,6 +268,117 @@ def _cmd_render(args: argparse.Namespace) -> None:
     )
 
 
+SURFACE_ALGORITHMS = ("fpa", "fha", "zbuffer")
+
+
+def _vector3(text: str) -> tuple[float, float, float]:
+    """``"x,y,z"`` as three finite floats."""
+    parts = text.split(",")
+    try:
+        values = tuple(float(p) for p in parts)
+    except ValueError:
+        values = ()
+    if len(values) != 3 or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"must be three finite numbers x,y,z; got {_shown(text)}")
+    return values  # type: ignore[return-value]
+
+
+def _load_surface(name: str, points: int | None):
+    """A built-in grid surface by name (with `points` per side) or a Table 2-1 database file."""
+    from .surfaces import BUILTIN_SURFACES, GridSurface
+
+    if name in BUILTIN_SURFACES:
+        return BUILTIN_SURFACES[name]() if points is None else BUILTIN_SURFACES[name](points)
+    if points is not None:
+        raise ValueError(
+            f"--points applies to the built-in surfaces {sorted(BUILTIN_SURFACES)} only"
+        )
+    if not Path(name).is_file():
+        raise ValueError(
+            f"surface {_shown(name)} is neither a built-in ({', '.join(BUILTIN_SURFACES)}) "
+            "nor a database file"
+        )
+    return GridSurface.from_database(name)
+
+
+def _default_view(surface, point, direction, parallel: bool):
+    """The dissertation's (6, 8, 3) for [-2, 2]^2, scaled to the domain, looking at its centre."""
+    from .surfaces import View
+
+    size = max(surface.x[-1] - surface.x[0], surface.y[-1] - surface.y[0])
+    centre = np.array([surface.x.mean(), surface.y.mean(), surface.z.mean()])
+    if point is None:
+        point = (centre[0] + 1.5 * size, centre[1] + 2.0 * size, surface.z.min() + 0.75 * size)
+    if direction is None:
+        direction = tuple((centre - np.array(point)).tolist())
+    return View(point, direction, "parallel" if parallel else "perspective")
+
+
+def _cmd_surface(args: argparse.Namespace) -> None:
+    from .pipeline import render
+    from .surfaces import floating_horizon, floating_perimeter
+
+    if args.output is not None:
+        _image_format(args.output)  # refuse a bad name before the work
+    surface = _load_surface(args.surface, args.points)
+    view = _default_view(surface, args.viewpoint, args.direction, args.parallel)
+    w, h = args.width, args.height
+    if args.algorithm == "fha":
+        result = floating_horizon(surface, view, w, h, family=args.family)
+        image, summary = (
+            result.image,
+            f"{result.stats.curves} curves, {result.stats.segments} parts",
+        )
+    elif args.algorithm == "fpa":
+        result = floating_perimeter(surface, view, w, h, args.mode, shading=args.shading)
+        s = result.stats
+        image = result.image
+        summary = (
+            f"case {result.case}, {s.edges} edges, {s.visible} of {s.points} points visible"
+            if args.mode == "lines"
+            else f"case {result.case}, {s.facets} facets, {s.samples} samples painted front to back"
+        )
+    else:
+        z = render(surface.scene(view, w, h), w, h, shading=args.shading)
+        image, summary = z.image, f"{z.stats.polygons_drawn} triangles, {z.stats.clipped} clipped"
+    if args.output is not None:
+        _save_image(args.output, np.clip(image, 0.0, 1.0))
+    print(
+        f"{args.output or args.surface}: {surface.nx}x{surface.ny} grid, {w}x{h}, "
+        f"{args.algorithm}: {summary}"
+    )
+
+
+def _add_surface_options(surface: argparse.ArgumentParser) -> None:
+    surface.add_argument(
+        "surface", help="gaussian, polynomial, rogers, random, or a database file (Table 2-1)"
+    )
+    surface.add_argument("-o", "--output", help=f"image file: {', '.join(IMAGE_FORMATS)}")
+    surface.add_argument("--algorithm", choices=SURFACE_ALGORITHMS, default="fpa")
+    surface.add_argument(
+        "--mode",
+        choices=("lines", "surface"),
+        default="lines",
+        help="fpa: hidden lines or surfaces",
+    )
+    surface.add_argument("--family", choices=("x", "y"), default="x", help="fha: which curves")
+    surface.add_argument(
+        "--shading", choices=("flat", "gouraud", "phong", "gooch"), default="phong"
+    )
+    surface.add_argument(
+        "--points", type=_at_least_one, metavar="N", help="built-ins: points per side"
+    )
+    surface.add_argument(
+        "--viewpoint", type=_vector3, metavar="X,Y,Z", help="default: (6, 8, 3) scaled"
+    )
+    surface.add_argument(
+        "--direction", type=_vector3, metavar="DX,DY,DZ", help="default: towards the centre"
+    )
+    surface.add_argument("--parallel", action="store_true", help="parallel projection")
+    surface.add_argument("--width", type=_at_least_one, default=400, metavar="N")
+    surface.add_argument("--height", type=_at_least_one, default=400, metavar="N")
+
+
 def _cmd_conformance(args: argparse.Namespace) -> int:
     from .conformance import main as conformance_main  # imported only when asked for
 
@@ -517,6 +628,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_render_options(render)
     render.set_defaults(run=_cmd_render)
+    surface = commands.add_parser(
+        "surface", help="a grid surface by the FPA, the floating horizon or the z-buffer"
+    )
+    _add_surface_options(surface)
+    surface.set_defaults(run=_cmd_surface)
     bench = commands.add_parser("bench", help="benchmarks: run time against peers and error")
     bench.add_argument("suite", choices=SUITES)
     bench.add_argument("--quick", action="store_true", help="smaller scenes, for a smoke test")

@@ -495,3 +495,49 @@ def test_issue9_bench_grading_grades_a_synthetic_class_with_each_jobs(capsys, mo
     assert "students/min" in out and "s/student" in out
     assert f"student-00 (every solution): {total} of {total} points" in out
     assert "same grades with every --jobs: yes" in out
+
+
+def test_surface_draws_each_algorithm_and_reads_a_database(capsys, tmp_path):
+    from scanviz.surfaces import floating_perimeter, gaussian
+    from scanviz.surfaces.perimeter import View
+
+    database = tmp_path / "gaussian.txt"
+    gaussian(9).to_database(database, z_decimals=None)
+    image = tmp_path / "lines.png"
+    argv = ["surface", str(database), "--viewpoint", "3,4,3", "--width", "60", "--height", "40"]
+    assert main([*argv, "-o", str(image)]) == 0
+    lines = floating_perimeter(
+        gaussian(9), View((3, 4, 3), (-3, -4, -3 + gaussian(9).z.mean())), 60, 40
+    )
+    drawn = matplotlib.image.imread(image)[::-1, :, 0] < 0.5  # black lines on white, rows y up
+    assert (drawn == lines.lines).all()
+    assert f"case 9, {lines.stats.edges} edges, {lines.stats.visible} of" in capsys.readouterr().out
+    for extra in (
+        ["--algorithm", "fha", "--family", "y"],
+        ["--mode", "surface", "--shading", "flat"],
+        ["--algorithm", "zbuffer", "--parallel"],
+    ):
+        assert (
+            main(["surface", "rogers", "--points", "9", "--width", "32", "--height", "32", *extra])
+            == 0
+        )
+    out = capsys.readouterr().out
+    assert "fha: 9 curves" in out and "64 facets" in out and "0 clipped" in out
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["surface", "nosuch"], "is neither a built-in (gaussian, polynomial, rogers, random)"),
+        (["surface", "gaussian", "--viewpoint", "1,2"], "must be three finite numbers x,y,z"),
+        (
+            ["surface", "gaussian", "--viewpoint", "0,0,0.5", "--direction", "1,0,0"],
+            "in front of the viewpoint",
+        ),
+        (["surface", "gaussian", "-o", "x.bmp"], "unsupported image file extension '.bmp'"),
+    ],
+)
+def test_surface_errors_are_one_line(capsys, argv, message):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1
