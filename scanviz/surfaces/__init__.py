@@ -3,6 +3,15 @@ the floating horizon, and the Floating Perimeter Algorithm (viewing cases, facet
 edges each facet processes, the perimeter test, hidden lines and hidden surfaces), checked against
 the z-buffer."""
 
+from .complex import (
+    DEFAULT_CLIP,
+    THREE_POLES_TWO_ZEROS,
+    ComplexSurface,
+    RationalFunction,
+    complex_surface,
+    phase_scene,
+    three_poles_two_zeros,
+)
 from .enumeration import (
     Enumeration,
     enumerate_facets,
@@ -36,6 +45,13 @@ from .reference import ZBufferComparison, compare_with_zbuffer
 from .view import View
 
 __all__ = [
+    "DEFAULT_CLIP",
+    "THREE_POLES_TWO_ZEROS",
+    "ComplexSurface",
+    "RationalFunction",
+    "complex_surface",
+    "phase_scene",
+    "three_poles_two_zeros",
     "BUILTIN_SURFACES",
     "Enumeration",
     "FacetEdges",

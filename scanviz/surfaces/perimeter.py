@@ -48,6 +48,7 @@ from .. import steps
 from ..conventions import check_choice, check_raster_size, short_repr
 from ..limits import check_memory
 from ..raster.api import as_tracer
+from ..scene import Scene
 from ..trace import Recorder, Trace
 from ..trace.events import (
     FacetsEnumerated,
@@ -255,6 +256,7 @@ def floating_perimeter(
     shading: str = "phong",
     painting: str = "mask",
     sample: str = "corner",
+    scene: Scene | None = None,
 ) -> PerimeterResult:
     """Hidden lines or hidden surfaces of a grid surface by the Floating Perimeter Algorithm.
 
@@ -281,6 +283,10 @@ def floating_perimeter(
     sample : {"corner", "center"}
         Surface mode: the render's sampling (``render``'s default, "corner",
         matches ``render(surface.scene(view, width, height), width, height)``).
+    scene : Scene, optional
+        Surface mode: the scene painted in facet order (default
+        ``surface.scene(view, width, height)``), e.g. `phase_scene`'s, with other
+        materials; one object whose faces 2k, 2k + 1 are grid element k.
 
     Returns
     -------
@@ -319,7 +325,7 @@ def floating_perimeter(
             )
         )
     if mode == "surface":
-        return _surface(surface, view, width, height, enumeration, edges, tracer, shading, painting, sample)  # fmt: skip
+        return _surface(surface, view, width, height, enumeration, edges, tracer, shading, painting, sample, scene)  # fmt: skip
     screen = view.screen_from_world(surface.points(), width, height)[0]
     pixels = np.floor(screen + 0.5).astype(np.int64)
     starts, ends = edge_endpoints(edges.edges, surface.nx)
@@ -588,10 +594,21 @@ def facet_polygons(
     return tuple(order.reshape(-1).tolist())
 
 
-def _surface(surface, view, width, height, enumeration, edges, tracer, shading, painting, sample):
+def _surface(
+    surface, view, width, height, enumeration, edges, tracer, shading, painting, sample, scene
+):
     from ..pipeline import render  # the pipeline imports the visibility package; import it late
 
-    scene = surface.scene(view, width, height)
+    if scene is None:
+        scene = surface.scene(view, width, height)
+    elif not isinstance(scene, Scene):
+        raise TypeError(f"'scene' must be a scanviz Scene; got {short_repr(scene)}")
+    elif len(scene.objects) != 1 or len(scene.objects[0].mesh.faces) != 2 * surface.facets:
+        faces = [len(o.mesh.faces) for o in scene.objects]
+        raise ValueError(
+            f"'scene' must hold one object of 2 x {surface.facets} faces (grid element k: faces "
+            f"2k, 2k + 1); got {len(faces)} object{'s' * (len(faces) != 1)} of {sum(faces)} faces"
+        )
     polygons = facet_polygons(enumeration, surface.x, surface.y, view)
     if painting == "painter":
         order = FacetOrder(polygons[::-1], mode="over")
