@@ -5,6 +5,7 @@ from .bsp import BspView, bsp_stepper
 from .clip import plot_clip
 from .depth_sort import DepthSortView, PainterView, depth_sort_stepper, painter_stepper
 from .editor import PolygonEditor
+from .fill import FillView, fill_stepper
 from .lines import LineView, line_stepper
 from .model import StepModel
 from .scan import ScanConversionView, scan_conversion_stepper
@@ -27,6 +28,8 @@ from .zbuffer import InterpolationView, ZBufferView, interpolation_stepper, zbuf
 
 __all__ = [
     "ABufferInspector",
+    "FillView",
+    "fill_stepper",
     "BspView",
     "DepthSortView",
     "FragmentInsertionView",

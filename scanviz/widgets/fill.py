@@ -1,0 +1,148 @@
+"""The slides' fill variants span by span (`fill_stepper`): the image filled so far and the span's colours.
+
+Drawn from the trace of `scanviz.raster.fill_polygon`: its ``span`` events
+(solid and pattern fills) or ``span_values`` events (colour wash and vertex
+colours, whose C and dC the AET carries). Each span is a step; the image
+shows the samples of the spans emitted so far in the fill's final colours.
+"""
+
+from __future__ import annotations
+
+import html
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.patches import Rectangle
+
+from ..geometry import Polygon
+from ..raster.fill import ColourWash, Pattern, Solid, VertexColours, fill_polygon
+from ..trace import Trace
+from ._common import new_figure, say, status_label
+from .stepper import Stepper, figure_widget, first_steps, refresh_figure
+
+UNFILLED = (0.85, 0.85, 0.85)  # samples no span has reached yet
+
+
+class FillView:
+    """The filled image after each span, and what the span wrote.
+
+    Parameters
+    ----------
+    polygon : Polygon or array_like
+        The polygon filled (its outline is drawn).
+    trace : Trace
+        ``span`` or ``span_values`` events of ``fill_polygon(..., trace=True)``.
+    image : (H, W, 3) ndarray
+        The final image.
+    fill : Solid, Pattern, ColourWash or VertexColours
+    note : str, optional
+
+    Attributes
+    ----------
+    widget : ipywidgets.VBox
+    picture : matplotlib AxesImage
+        The image so far: the final colours on the spans emitted, `UNFILLED` elsewhere.
+    span_patch : matplotlib Rectangle
+        Around the current span.
+    text : ipywidgets.HTML
+        The span: its row and pixels, and for the incremental fills C at its
+        start and dC per pixel.
+    """
+
+    def __init__(self, polygon, trace: Trace, image: np.ndarray, fill, *, note: str = "") -> None:
+        self.trace, self.image, self.fill = trace, image, fill
+        # The incremental fills' spans are their span_values; solid and pattern fills', span events.
+        self.kind = "span_values" if isinstance(fill, ColourWash | VertexColours) else "span"
+        self.spans = [e for e in trace if e.kind == self.kind]
+        height, width = image.shape[:2]
+        fig, (ax,) = new_figure(1, width=4.5, height=4.5)
+        self.picture = ax.imshow(
+            image, origin="lower", extent=(0, width, 0, height), interpolation="nearest"
+        )
+        for contour in Polygon(polygon).contours:
+            closed = np.vstack([contour, contour[:1]])
+            ax.plot(closed[:, 0], closed[:, 1], color="crimson", lw=1.2)
+        self.span_patch = Rectangle((0, 0), 0, 1, fill=False, ec="black", lw=2, visible=False)
+        ax.add_patch(self.span_patch)
+        ax.set_xlim(0, width)
+        ax.set_ylim(0, height)
+        ax.set_title(type(fill).__name__, fontsize=9)
+        fig.tight_layout()
+        self.figure, self.ax = fig, ax
+        self.text, self.note = widgets.HTML(), status_label()
+        say(self.note, note)
+        self._canvas = figure_widget(fig)
+        self.widget = widgets.VBox([self.note, widgets.HBox([self._canvas, self.text])])
+        self.show(0)
+
+    def show(self, step: int) -> None:
+        """Show the image after the spans among the first `step` events."""
+        done = [e for e in self.trace[: int(step)] if e.kind == self.kind]
+        filled = np.zeros(self.image.shape[:2], bool)
+        for span in done:
+            filled[span.y, span.x_start : span.x_end] = True
+        self.picture.set_data(np.where(filled[..., None], self.image, UNFILLED))
+        if done:
+            span = done[-1]
+            self.span_patch.set_bounds(span.x_start, span.y, span.x_end - span.x_start, 1)
+            self.span_patch.set_visible(True)
+            self.text.value = self._describe(span, len(done))
+        else:
+            self.span_patch.set_visible(False)
+            self.text.value = "<i>no span yet: the edge table is being built</i>"
+        refresh_figure(self.figure, self._canvas)
+
+    def _describe(self, span, count: int) -> str:
+        head = (
+            f"<b>span {count} of {len(self.spans)}</b>: row {span.y}, pixels "
+            f"{span.x_start} &le; x &lt; {span.x_end}<br>"
+        )
+        if span.kind == "span_values":
+            start = ", ".join(f"{v:.4f}" for v in span.values)
+            step = ", ".join(f"{v:+.4f}" for v in span.dvdx)
+            return head + (
+                f"crossings x = {span.x_left:.3f} .. {span.x_right:.3f}<br>"
+                f"C at x = {span.x_start}: ({html.escape(start)})<br>"
+                f"dC per pixel: ({html.escape(step)})<br>"
+                "<i>each pixel: C &larr; C + dC (one addition per channel)</i>"
+            )
+        if isinstance(self.fill, Pattern):
+            h, w = self.fill.tile.shape[:2]
+            return head + f"tile pixel ((x &minus; x0) mod {w}, (y &minus; y0) mod {h}) for each x"
+        return head + f"colour {tuple(round(c, 3) for c in self.fill.color)} for each x"
+
+
+def fill_stepper(polygon, width: int, height: int, fill=None, **options) -> Stepper:
+    """Fill `polygon` with tracing and step through its spans.
+
+    Parameters
+    ----------
+    polygon : Polygon or array_like
+    width, height : int
+    fill : Solid, Pattern, ColourWash or VertexColours (default Solid())
+    **options
+        Passed to `scanviz.raster.fill_polygon` (``sample``, ``rule``,
+        ``subpixel_bits``, ``background``).
+
+    Returns
+    -------
+    Stepper
+        ``.views[0]`` is the `FillView`.
+
+    Examples
+    --------
+    >>> from scanviz.raster import ColourWash
+    >>> stepper = fill_stepper([(1, 1), (14, 3), (6, 12)], 16, 14, ColourWash())
+    >>> stepper.slider.value = stepper.slider.max
+    >>> "dC per pixel" in stepper.views[0].text.value
+    True
+    """
+    fill = Solid() if fill is None else fill
+    if not isinstance(fill, Solid | Pattern | ColourWash | VertexColours):
+        raise TypeError(
+            f"'fill' must be a Solid, Pattern, ColourWash or VertexColours; got {type(fill).__name__}"
+        )
+    result = fill_polygon(polygon, width, height, fill, trace=True, **options)
+    trace, note = first_steps(result.trace, "events")
+    view = FillView(polygon, trace, result.image, fill, note=note)
+    return Stepper(trace, [view], title="fill variants: one span at a time")
