@@ -8,16 +8,18 @@ edges live in their own modules.
 from .antialiased import PROGRESS_POLYGONS
 from .edges import PROGRESS_EDGES
 from .prepare import ATTRIBUTES, prepare
-from .render import ANTIALIASED, SHADINGS, VISIBILITIES, render
-from .result import RenderPlan, RenderResult, RenderStats, Stage
+from .render import ANTIALIASED, RELIGHTABLE, SHADINGS, VISIBILITIES, render
+from .result import PixelRecord, RenderPlan, RenderResult, RenderStats, Stage
 
 __all__ = [
     "ANTIALIASED",
     "ATTRIBUTES",
     "PROGRESS_EDGES",
     "PROGRESS_POLYGONS",
+    "RELIGHTABLE",
     "SHADINGS",
     "VISIBILITIES",
+    "PixelRecord",
     "RenderPlan",
     "RenderResult",
     "RenderStats",

@@ -12,9 +12,15 @@ once per visible pixel (Phong, Gooch) or per vertex before rasterization
 forward renderer gives, without shading fragments that are later hidden.
 The opaque algorithms are chosen by name from `scanviz.visibility.ALGORITHMS`
 (`solve` dispatches); the a-buffer path is `scanviz.pipeline.antialiased`.
+
+The last stage, the image function (Rendermatic thesis ch. 7), is a function
+of what each pixel keeps; `scanviz.pipeline.relight` runs it again under new
+lights and materials (`RenderResult.relight`, docs/relight.md).
 """
 
 from __future__ import annotations
+
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -22,14 +28,14 @@ from .. import steps
 from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
 from ..limits import check_memory
 from ..raster.api import as_tracer
-from ..scene.model import Scene
+from ..scene.model import Material, Scene
 from ..trace import Recorder
 from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
 from .antialiased import _antialiased
 from .edges import _draw_feature_edges
 from .prepare import ATTRIBUTES, prepare
-from .result import RenderPlan, RenderResult, Stage
-from .shade import _shade_pixels, _trace_illumination
+from .result import PixelRecord, RenderPlan, RenderResult, Stage
+from .shade import _exact_materials, _image_function, _trace_illumination
 
 SHADINGS = ("flat", "gouraud", "phong", "gooch")
 ANTIALIASED = ("abuffer", "flawed")
@@ -38,6 +44,11 @@ VISIBILITIES = (*ALGORITHMS, *ANTIALIASED)  # the opaque algorithms, then the a-
 # 8 per attribute per pixel, plus the shading temporaries of per-pixel shading.
 PIXEL_BYTES = {"opaque": 8 * 8, "abuffer": 8 * 16, "flawed": 8 * 16}
 SHADING_BYTES = 8 * 64  # per pixel or fragment shaded by Phong/Gooch: vectors of every light term
+RELIGHTABLE = ("phong", "gooch")  # shaded per pixel from the kept normal, position and material
+FIXED_BEFORE_VISIBILITY = {
+    "flat": "per polygon before visibility",
+    "gouraud": "per vertex before visibility",
+}
 
 
 def render(
@@ -96,7 +107,9 @@ def render(
     Returns
     -------
     RenderResult
-        Image, depth and alpha never hold NaN.
+        Image, depth and alpha never hold NaN. Its `record` keeps what the
+        image function needs, so that ``result.relight(lights=...)`` can
+        recompute a Phong or Gooch image without visibility (docs/relight.md).
 
     Raises
     ------
@@ -127,7 +140,7 @@ def render(
     if not isinstance(scene, Scene):
         raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
     tracer = as_tracer(trace)
-    _check_render_memory(width, height, name, ATTRIBUTES[shading], shading)
+    _check_render_memory(width, height, name, ATTRIBUTES[shading], shading, edges)
     prepared = prepare(
         scene,
         width,
@@ -150,22 +163,37 @@ def render(
         )
         alpha = abuffer.alpha
     _check_no_nan(name, image=image, depth=depth, alpha=alpha)
+    edge_pixels = None
     if edges:
-        stats.edge_pixels = _draw_feature_edges(scene, image, depth, width, height)
-    plan = _plan(scene, prepared, shading, name, edges, tracer)
+        edge_pixels, stats.edge_pixels = _feature_edge_pixels(scene, depth, width, height)
+        image[edge_pixels] = 0.0
+    stages = tuple(prepared.stages)
+    plan = _plan(_transparent(scene, {}), stats, stages, shading, name, edges, tracer)
     recorded = tracer.trace() if isinstance(tracer, Recorder) else None
     # Float bounds: with int bounds numpy takes a casting path ~20x slower on a 1024² image.
     np.clip(image, 0.0, 1.0, out=image)
-    return RenderResult(image, depth, polygon, stats, plan, recorded, alpha, abuffer, solved)
+    record = PixelRecord(scene, shading, name, prepared.polygon_object, edge_pixels, stages)
+    return RenderResult(
+        image, depth, polygon, stats, plan, recorded, alpha, abuffer, solved, record
+    )
 
 
-def _check_render_memory(width, height, visibility, attributes, shading) -> None:
+def _feature_edge_pixels(scene, depth, width, height) -> tuple[np.ndarray, int]:
+    """((H, W) bool, count): where the feature edges draw black, kept so that a relight redraws them."""
+    unmarked = np.ones((height, width), bool)
+    drawn = _draw_feature_edges(scene, unmarked, depth, width, height)
+    return ~unmarked, drawn
+
+
+def _check_render_memory(width, height, visibility, attributes, shading, edges) -> None:
     """Refuse a render whose per-pixel buffers alone are over the memory limit, before any is made.
 
-    The z-buffer holds every attribute per pixel and shades pixels; the
-    a-buffer's per-fragment storage is checked as it grows (`_polygon_fragments`).
+    The z-buffer holds every attribute per pixel and shades pixels (and keeps
+    them: they are the record `relight` reads); the feature edges mark their
+    pixels in two bytes per pixel; the a-buffer's per-fragment storage is
+    checked as it grows (`_polygon_fragments`).
     """
-    per_pixel = PIXEL_BYTES.get(visibility, PIXEL_BYTES["opaque"])
+    per_pixel = PIXEL_BYTES.get(visibility, PIXEL_BYTES["opaque"]) + (2 if edges else 0)
     if visibility not in ANTIALIASED:
         per_pixel += 8 * attributes + (SHADING_BYTES if shading in ("phong", "gooch") else 0)
     check_memory(
@@ -217,15 +245,17 @@ def _opaque(
     if shading == "flat":  # one gather: row 0 of the table is the background (polygon -1)
         image = np.vstack([scene.background, prepared.flat_colors])[result.polygon + 1]
         return image, result
-    image = np.empty((height, width, 3))
-    image[...] = scene.background
     if shading == "gouraud":
+        image = np.empty((height, width, 3))
+        image[...] = scene.background
         image[visible] = result.values[visible]
-    else:
-        image[visible] = _shade_pixels(scene, shading, result.values[visible])
-        stats.shaded_pixels = int(visible.sum())
-        if shading == "phong" and tracer is not None and tracer.wants("illumination"):
-            _trace_illumination(scene, tracer, result)
+        return image, result
+    _exact_materials(prepared.polygons, result)
+    image, stats.shaded_pixels = _image_function(
+        scene, shading, result.polygon, result.values, prepared.polygon_object, {}
+    )
+    if shading == "phong" and tracer is not None and tracer.wants("illumination"):
+        _trace_illumination(scene, tracer, result)
     return image, result
 
 
@@ -237,19 +267,26 @@ def _zbuffer_path(tracer) -> str:
     return "opaque visibility, compiled kernel"
 
 
-def _plan(scene, prepared, shading, visibility, edges, tracer) -> RenderPlan:
-    transparent = any(
-        not o.material.opaque or any(not m.opaque for m in o.mesh.materials) for o in scene.objects
+def _transparent(scene: Scene, materials: Mapping[int, Material]) -> bool:
+    """Whether any material of the scene lets light through (`materials` replaces objects' ones)."""
+    return any(
+        not materials[i].opaque
+        if i in materials
+        else not o.material.opaque or any(not m.opaque for m in o.mesh.materials)
+        for i, o in enumerate(scene.objects)
     )
+
+
+def _plan(transparent, stats, prepared_stages, shading, visibility, edges, tracer) -> RenderPlan:
     deferred = shading in ("phong", "gooch") and visibility not in ANTIALIASED
     opaque = visibility not in ANTIALIASED
     work = (
-        f"{prepared.stats.polygons_drawn} polygons, at most "
-        f"{prepared.stats.fragments_estimated} fragments (their bounding boxes)"
+        f"{stats.polygons_drawn} polygons, at most "
+        f"{stats.fragments_estimated} fragments (their bounding boxes)"
     )
     stages = [
         Stage("transform", True, "world -> eye -> clip -> NDC -> display"),
-        *prepared.stages,
+        *prepared_stages,
         Stage(
             "shade vertices",
             shading == "gouraud",

@@ -8,6 +8,7 @@ from .editor import PolygonEditor
 from .fill import FillView, fill_stepper
 from .lines import LineView, line_stepper
 from .model import StepModel
+from .relight import RelightView, light_direction, relight_widget
 from .scan import ScanConversionView, scan_conversion_stepper
 from .scanline_visibility import ScanlineVisibilityView, scanline_visibility_stepper
 from .static import plot_scan
@@ -30,6 +31,9 @@ __all__ = [
     "ABufferInspector",
     "FillView",
     "fill_stepper",
+    "RelightView",
+    "light_direction",
+    "relight_widget",
     "BspView",
     "DepthSortView",
     "FragmentInsertionView",
