@@ -1,5 +1,6 @@
 """Shading: the Phong illumination model, vertex and face normals, Gooch tones, feature edges,
-the specular look-up table and the colour ring of Wang (1989, ch. 3).
+fast Phong shading (Taylor quadratics stepped by forward differences), the specular look-up
+table and the colour ring of Wang (1989, ch. 3).
 
 Flat, Gouraud and Phong shading differ only in where the pipeline evaluates
 `illuminate`: once per polygon, once per vertex (then interpolating colors),
@@ -15,6 +16,22 @@ from .colour_ring import (
     triangle_ring_index,
 )
 from .edges import feature_edges
+from .fast_phong import (
+    RationalForms,
+    ReflectionModel,
+    ShadedTriangle,
+    TaylorCoefficients,
+    channel_quadratics,
+    evaluate_quadratic,
+    exact_phong_triangle,
+    fast_phong_triangle,
+    forward_differences,
+    half_angle_gap,
+    halfway_vector,
+    normal_plane,
+    rational_forms,
+    taylor_coefficients,
+)
 from .gooch import gooch
 from .illumination import (
     MATERIAL_FIELDS,
@@ -37,6 +54,20 @@ from .lut import (
 __all__ = [
     "MATERIAL_FIELDS",
     "MAX_RING_STEPS",
+    "RationalForms",
+    "ReflectionModel",
+    "ShadedTriangle",
+    "TaylorCoefficients",
+    "channel_quadratics",
+    "evaluate_quadratic",
+    "exact_phong_triangle",
+    "fast_phong_triangle",
+    "forward_differences",
+    "half_angle_gap",
+    "halfway_vector",
+    "normal_plane",
+    "rational_forms",
+    "taylor_coefficients",
     "colour_ring",
     "lut_level",
     "lut_level_coherent",

@@ -30,6 +30,7 @@ import numbers
 from collections.abc import Iterable, Sequence
 
 import numpy as np
+from numba import njit
 
 from ..scene.faces import FaceCorners, face_corners, newell
 from ..scene.model import Light, Material
@@ -220,6 +221,26 @@ def _attenuation(fudge: np.ndarray, distance: np.ndarray) -> np.ndarray:
     return 1 / (1 + falloff)
 
 
+@njit(cache=True)
+def _power_kernel(base, exponent, out):  # pragma: no cover - compiled
+    for i in range(base.shape[0]):
+        out[i] = base[i] ** exponent[i]
+
+
+def _power(base: np.ndarray, exponent: np.ndarray) -> np.ndarray:
+    """base ** exponent per element, the same bits for a row alone or in any batch.
+
+    numpy's vectorised power can differ in the last bit with the memory layout
+    (a SIMD body against a scalar remainder), which would break the traced ==
+    batched identity; one scalar power per element cannot.
+    """
+    out = np.empty(base.shape[0])
+    _power_kernel(
+        np.ascontiguousarray(base, np.float64), np.ascontiguousarray(exponent, np.float64), out
+    )
+    return out
+
+
 def _shade(
     positions: np.ndarray,
     normals: np.ndarray,
@@ -240,7 +261,9 @@ def _shade(
         n_dot_l = _dot(normal, to_light)
         r_dot_v = _dot(2 * n_dot_l[:, None] * normal - to_light, view)
         diffuse = materials[:, _DIFFUSE, None] * surface * np.maximum(n_dot_l, 0)[:, None]
-        highlight = materials[:, _SPECULAR] * np.maximum(r_dot_v, 0) ** materials[:, _EXPONENT]
+        highlight = materials[:, _SPECULAR] * _power(
+            np.maximum(r_dot_v, 0), materials[:, _EXPONENT]
+        )
         specular = np.where(n_dot_l > 0, highlight, 0.0)  # no highlight on the unlit side
         attenuation = _attenuation(materials[:, _FUDGE], distance)
         contribution = (

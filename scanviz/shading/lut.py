@@ -1,4 +1,4 @@
-"""The specular look-up table: (cos φ)^n by comparisons instead of a power (Chen 1989, §3.3).
+"""The specular look-up table: (cos φ)^n by comparisons instead of a power (Wang 1989, §3.3).
 
 The specular term of the dissertation's model is Isr·cos(φ)^n with the
 constant Isr = Ip·ks/(r + r0). Quantised to integer levels it is

@@ -999,3 +999,100 @@ class PerimeterUpdate(Event):
     points: int
     columns: tuple[tuple[int, int, int], ...]
     rows: tuple[tuple[int, int, int], ...]
+
+
+# --- fast Phong (scanviz.shading.fast_phong) ----------------------------------------------
+
+
+@dataclass(frozen=True)
+class RationalFormsRecord(Record):
+    """The scalars of the exact rational forms over one triangle (dissertation §3.2).
+
+    With N(x, y) = A x + B y + C (x, y from the expansion point):
+    a, b, c = L·A, L·B, L·C; aa, bb, cc = V·A, V·B, V·C; |N|² = d x² + e xy +
+    f y² + g x + h y + i; l, m, o, p, q, w the numerator of 2 (N·L)(N·V);
+    k_lv = L·V; ha, hb, hc = H·A, H·B, H·C (L, V, H unit).
+    """
+
+    a: float
+    b: float
+    c: float
+    aa: float
+    bb: float
+    cc: float
+    d: float
+    e: float
+    f: float
+    g: float
+    h: float
+    i: float
+    l: float  # noqa: E741 -- the dissertation's name
+    m: float
+    o: float
+    p: float
+    q: float
+    w: float
+    k_lv: float
+    ha: float
+    hb: float
+    hc: float
+
+
+@dataclass(frozen=True)
+class FastPhongSetup(Event):
+    """Fast Phong over triangle `polygon`: the expansion and every coefficient, before any pixel.
+
+    ``vertices`` are the snapped screen vertices, ``origin`` the expansion
+    point (``expansion`` "vertex": vertex 0, or "centroid"); ``plane`` is
+    (A, B, C) with N(x, y) = A x + B y + C in pixels from the origin.
+    ``cos_theta``, ``cos_specular`` and each of ``ambient_diffuse`` (r, g, b)
+    hold a quadratic's (x², xy, y², x, y, 1) coefficients: T5..T0, T55..T00
+    (``specular`` "phong") or the N·H ones ("blinn"), W5..W0. ``table`` is
+    the specular look-up table cos φ_1..cos φ_N.
+    """
+
+    kind: ClassVar[str] = "fast_phong_setup"
+    polygon: int
+    vertices: tuple[tuple[float, float], ...]
+    normals: tuple[tuple[float, float, float], ...]
+    expansion: str
+    origin: tuple[float, float]
+    plane: tuple[tuple[float, float, float], ...]
+    to_light: tuple[float, float, float]
+    to_viewer: tuple[float, float, float]
+    halfway: tuple[float, float, float]
+    forms: RationalFormsRecord
+    specular: str
+    cos_theta: tuple[float, float, float, float, float, float]
+    cos_specular: tuple[float, float, float, float, float, float]
+    ambient_diffuse: tuple[tuple[float, float, float, float, float, float], ...]
+    table: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class FastPhongPixel(Event):
+    """Fast Phong at sample (x, y): the quadratics' values there and their steps to x + 1.
+
+    ``direct`` is True at a span's first sample (values evaluated from the
+    coefficients) and False where they came from one forward-difference step.
+    Each ``*_step`` is the difference to the next sample. ``level`` is the
+    table index of ``cos_specular`` (``comparisons`` made to find it);
+    ``lit`` says whether cos θ > 0 (else no highlight); ``color`` is
+    clip(max(ambient_diffuse, Ia ka) + (level if lit else 0), 0, 255).
+    """
+
+    kind: ClassVar[str] = "fast_phong_pixel"
+    polygon: int
+    x: int
+    y: int
+    direct: bool
+    cos_theta: float
+    cos_theta_step: float
+    cos_specular: float
+    cos_specular_step: float
+    ambient_diffuse: tuple[float, float, float]
+    ambient_diffuse_step: tuple[float, float, float]
+    level: int
+    comparisons: int
+    lit: bool
+    color: tuple[float, float, float]

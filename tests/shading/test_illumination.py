@@ -457,3 +457,22 @@ def test_issue8_d4_distances_beyond_float64_attenuate_to_zero_not_nan():
     no_fudge = rows(dataclasses.replace(material, fudge=0.0), 1)
     lit = illuminate([(0, 0, -1.5e308)], [(0, 0, 1)], no_fudge, (0, 0, 1.6e308), [light], WHITE)
     np.testing.assert_array_equal(lit, [[1.0, 1.0, 1.0]])  # no fudge: no fall-off, even there
+
+
+def test_the_highlight_power_has_the_same_bits_in_any_memory_layout():
+    # Found by hypothesis: numpy's SIMD power gave this row one ulp apart alone and in a batch.
+    positions, normals = np.zeros((7, 3)), np.zeros((7, 3))
+    normals[5] = (-3.0, 0.0, 6.0)
+    materials = np.zeros((7, 9))
+    materials[5] = (0, 0, 0, 0, 0, 1, 2, 0, 0)
+    lights = [
+        Light(kind="point", position=(0, 0, 0), color=(0, 0, 0)),
+        Light(kind="point", position=(0, 0, 0), color=(0, 0, 0)),
+        Light(direction=(-1.5, 4.0, 1.75), color=(0.0, 0.0, 1.0)),
+    ]
+    options = {"lights": lights, "ambient_light": np.zeros(3), "eye": np.array([0.0, 0.0, -1.0])}
+    together = illuminate(positions, normals, materials, **options)
+    traced = illuminate_traced(
+        positions[5], normals[5], materials[5], **options, trace=Recorder(), pixel=(5, 0)
+    )
+    assert traced.tobytes() == together[5].tobytes()
