@@ -16,11 +16,12 @@ from matplotlib.patches import Rectangle
 
 from ..geometry import Polygon
 from ..raster.fill import ColourWash, Pattern, Solid, VertexColours, fill_polygon
-from ..trace import Trace
+from ..trace import Recorder, Trace
 from ._common import new_figure, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 
 UNFILLED = (0.85, 0.85, 0.85)  # samples no span has reached yet
+INCREMENTAL_KINDS = ("polygon_setup", "edge_values", "span_values")
 
 
 class FillView:
@@ -142,7 +143,11 @@ def fill_stepper(polygon, width: int, height: int, fill=None, **options) -> Step
         raise TypeError(
             f"'fill' must be a Solid, Pattern, ColourWash or VertexColours; got {type(fill).__name__}"
         )
-    result = fill_polygon(polygon, width, height, fill, trace=True, **options)
+    incremental = isinstance(fill, ColourWash | VertexColours)
+    # The incremental fills step the AET's values row by row; their per-sample depth tests
+    # (the z-buffer they run through) would only lengthen the stepping.
+    recorder = Recorder(kinds=INCREMENTAL_KINDS) if incremental else Recorder()
+    result = fill_polygon(polygon, width, height, fill, trace=recorder, **options)
     trace, note = first_steps(result.trace, "events")
     view = FillView(polygon, trace, result.image, fill, note=note)
     return Stepper(trace, [view], title="fill variants: one span at a time")

@@ -4,8 +4,9 @@ The test starts JupyterLab on a free localhost port over a temporary copy of
 ``notebooks/``, opens lesson 02, runs all cells from the Run menu, then clicks
 the scan-conversion stepper's Next button and checks that the active edge table
 shown beside it changes; the same for lesson 07 and its depth-sort stepper
-(the pair being tested changes) and for lesson 08 and its floating-perimeter
-stepper (the facet or edge described changes). Screenshots go to
+(the pair being tested changes), for lesson 08 and its floating-perimeter
+stepper (the facet or edge described changes) and for lesson 09 and its
+fill-variant stepper (the span described changes). Screenshots go to
 ``tests/browser/screenshots/`` (their paths are printed; ``pytest -rP`` shows
 them).
 
@@ -35,6 +36,9 @@ PAIR_CAPTION = re.compile(r"no pair under test|S = \S+, S' = \S+")  # DepthSortV
 SURFACES_LESSON = "08_grid_surfaces.ipynb"
 PERIMETER_TITLE = "floating perimeter: one facet, edge or update per step"  # perimeter_stepper's
 PERIMETER_CAPTION = re.compile(r"^\s*(start:|viewing case \d|facet \d+)")  # PerimeterView.text
+SHADING_LESSON = "09_fast_shading.ipynb"
+FILL_TITLE = "fill variants: one span at a time"  # fill_stepper's
+FILL_CAPTION = re.compile(r"^\s*(span \d+ of|no span yet)")  # FillView.text
 EXERCISE = "exercises/05_span_rule.ipynb"
 SCREENSHOTS = Path(__file__).resolve().parent / "screenshots"
 CHROMIUM_FLAGS = [
@@ -253,6 +257,22 @@ def test_grid_surfaces_lesson_08_runs_and_its_perimeter_stepper_steps(lab_url, b
     page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
     _screenshot(page, f"{Path(SURFACES_LESSON).stem}-stepped.png")
     assert caption.inner_text() != before, f"the step shown did not change in {NEXT_CLICKS} steps"
+
+
+def test_fast_shading_lesson_09_runs_and_its_fill_stepper_steps(lab_url, browser):
+    page = browser.new_page()
+    _open(page, lab_url, SHADING_LESSON)
+    _run_all_cells(page, Path(SHADING_LESSON).stem)
+    stepper = page.locator(".jp-OutputArea-output", has_text=FILL_TITLE).first
+    stepper.scroll_into_view_if_needed()
+    caption = stepper.locator(".widget-html-content").filter(has_text=FILL_CAPTION).first
+    before = caption.inner_text()
+    _click_next(page, stepper, NEXT_CLICKS * 5)  # the edge table's events come before any span
+    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
+    _screenshot(page, f"{Path(SHADING_LESSON).stem}-stepped.png")
+    assert caption.inner_text() != before, (
+        f"the span shown did not change in {NEXT_CLICKS * 5} steps"
+    )
 
 
 def _answer_with(path: Path, source: str) -> None:
