@@ -552,7 +552,9 @@ def _add_render_options(render: argparse.ArgumentParser) -> None:
     render.add_argument("-o", "--output", help=f"image file to write: {', '.join(IMAGE_FORMATS)}")
     render.add_argument("--width", type=_at_least_one, default=512, help="pixels, >= 1")
     render.add_argument("--height", type=_at_least_one, default=512, help="pixels, >= 1")
-    render.add_argument("--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch"])
+    render.add_argument(
+        "--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch", "fast_phong"]
+    )
     render.add_argument("--visibility", default="zbuffer", choices=VISIBILITY_NAMES)
     render.add_argument("--edges", action="store_true", help="draw feature edges")
     render.add_argument("--mask", default="8x8", choices=["4x4", "8x4", "8x8"], help="a-buffer")

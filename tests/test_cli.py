@@ -389,6 +389,8 @@ def test_issue9_grade_writes_the_reports_and_says_where(capsys, monkeypatch, tmp
 
 @pytest.mark.parametrize("inside", ["", "graded"])
 def test_issue9_grade_refuses_to_write_into_the_submissions(capsys, monkeypatch, tmp_path, inside):
+    import scanviz.exercises.report  # noqa: F401 -- imported for real before `key` is faked
+
     fake_module(monkeypatch, "scanviz.exercises.key", load_key=lambda path: None)
     fake_module(monkeypatch, "scanviz.exercises.grading", grade_submissions=None)
     argv = ["grade", str(tmp_path), "--key", "k.toml", "-o", str(tmp_path / inside)]

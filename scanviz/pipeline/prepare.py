@@ -24,12 +24,14 @@ ATTRIBUTES = {
     "gouraud": 3,
     "phong": 15,
     "gooch": 15,
+    "fast_phong": 15,
 }  # phong: normal, position, material
 # What each attribute column is, for messages: (first column, last column + 1, scene field).
 ATTRIBUTE_FIELDS = {
     "gouraud": ((0, 3, "lit vertex colors"),),
     "phong": ((0, 3, "normals"), (3, 6, "positions"), (6, 15, "materials")),
     "gooch": ((0, 3, "normals"), (3, 6, "positions"), (6, 15, "materials")),
+    "fast_phong": ((0, 3, "normals"), (3, 6, "positions"), (6, 15, "materials")),
 }
 
 
@@ -143,7 +145,7 @@ def prepare(
         if shading == "gouraud":
             values = _lit(scene, world[corners], o.corner_normals, o.palette[o.corner_material])
             stats.shaded_vertices += len(values)
-        elif shading in ("phong", "gooch"):
+        elif shading in ("phong", "gooch", "fast_phong"):
             values = np.hstack([o.corner_normals, world[corners], o.palette[o.corner_material]])
         else:
             values = np.zeros((len(corners), 0))

@@ -33,11 +33,12 @@ from ..trace import Recorder
 from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
 from .antialiased import _antialiased
 from .edges import _draw_feature_edges
+from .fast_shade import fast_phong_image
 from .prepare import ATTRIBUTES, prepare
 from .result import PixelRecord, RenderPlan, RenderResult, Stage
 from .shade import _exact_materials, _image_function, _trace_illumination
 
-SHADINGS = ("flat", "gouraud", "phong", "gooch")
+SHADINGS = ("flat", "gouraud", "phong", "gooch", "fast_phong")
 ANTIALIASED = ("abuffer", "flawed")
 VISIBILITIES = (*ALGORITHMS, *ANTIALIASED)  # the opaque algorithms, then the a-buffer's two
 # Bytes per pixel of the buffers a render holds at once (image, depth, ids, their copies), plus
@@ -75,10 +76,15 @@ def render(
         See `scanviz.scene` and `scanviz.io.load_scene` ("builtin:sphere", a JSON file, ...).
     width, height : int
         Raster size.
-    shading : {"flat", "gouraud", "phong", "gooch"}
+    shading : {"flat", "gouraud", "phong", "gooch", "fast_phong"}
         Flat: one color per polygon. Gouraud: lit at vertices, colors
         interpolated. Phong: normals interpolated, lit per pixel. Gooch: tone
         shading per pixel.
+        Fast Phong (Wang 1989, ch. 3) shades each visible triangle with Taylor
+        quadratics of cos θ and cos φ stepped by forward differences and the
+        highlight from a look-up table (opaque visibility only;
+        `scanviz.pipeline.fast_shade`).
+
     visibility : {"zbuffer", "painter", "depth_sort", "bsp", "scanline", "warnock", "abuffer", "flawed"}
         The z-buffer (one sample per pixel); the classic opaque algorithms of
         `scanviz.visibility` (a name, or an instance such as
@@ -133,6 +139,11 @@ def render(
         check_choice("visibility", visibility, (*ALGORITHMS, *ANTIALIASED))
     chosen = None if visibility in ANTIALIASED else algorithm(visibility)
     name = visibility if chosen is None else chosen.name
+    if shading == "fast_phong" and chosen is None:
+        raise ValueError(
+            f"shading='fast_phong' shades the visible triangles of an opaque visibility "
+            f"algorithm; visibility={name!r} blends fragments: use shading='phong' with it"
+        )
     check_choice("sample", sample, SAMPLE_MODES)
     check_subpixel_bits(subpixel_bits)
     check_choice("mask", mask, ("4x4", "8x4", "8x8"))
@@ -195,7 +206,9 @@ def _check_render_memory(width, height, visibility, attributes, shading, edges) 
     """
     per_pixel = PIXEL_BYTES.get(visibility, PIXEL_BYTES["opaque"]) + (2 if edges else 0)
     if visibility not in ANTIALIASED:
-        per_pixel += 8 * attributes + (SHADING_BYTES if shading in ("phong", "gooch") else 0)
+        per_pixel += 8 * attributes + (
+            SHADING_BYTES if shading in ("phong", "gooch", "fast_phong") else 0
+        )
     check_memory(
         width * height * per_pixel, f"a {width}x{height} {visibility} render with {shading} shading"
     )
@@ -250,6 +263,11 @@ def _opaque(
         image[...] = scene.background
         image[visible] = result.values[visible]
         return image, result
+    if shading == "fast_phong":  # per screen triangle after visibility (pipeline/fast_shade.py)
+        image, stats.shaded_pixels = fast_phong_image(
+            scene, prepared.polygons, result, width, height, sample, subpixel_bits
+        )
+        return image, result
     _exact_materials(prepared.polygons, result)
     image, stats.shaded_pixels = _image_function(
         scene, shading, result.polygon, result.values, prepared.polygon_object, {}
@@ -294,13 +312,16 @@ def _plan(transparent, stats, prepared_stages, shading, visibility, edges, trace
         ),
         Stage(
             "shade pixels",
-            shading in ("phong", "gooch"),
+            shading in ("phong", "gooch", "fast_phong"),
             (
                 "per visible pixel only (deferred)"
                 if deferred
                 else "per fragment, at the centroid of its covered sub-samples"
             )
             if shading in ("phong", "gooch")
+            else "per visible triangle: Taylor quadratics stepped by forward differences, "
+            "the highlight from a look-up table"
+            if shading == "fast_phong"
             else f"{shading} shading",
         ),
         Stage(
