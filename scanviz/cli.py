@@ -209,6 +209,7 @@ def _cmd_fill(args: argparse.Namespace) -> None:
 _BENCH_OPTIONS = {
     "visibility": ("sizes", "width", "height", "repeat", "algorithms", "budget"),
     "surfaces": ("grids", "images", "repeat", "algorithms"),
+    "shading": ("repeat",),
 }
 """The options of the suites that take any: a suite gets those given of its own."""
 
@@ -588,7 +589,9 @@ def _add_suite_bench_options(bench: argparse.ArgumentParser) -> None:
     count = {"type": _at_least_one, "metavar": "N"}
     bench.add_argument("--width", **count, help="visibility: raster width (256)")
     bench.add_argument("--height", **count, help="visibility: raster height (256)")
-    bench.add_argument("--repeat", **count, help="visibility, surfaces: runs per scene (3)")
+    bench.add_argument(
+        "--repeat", **count, help="visibility, surfaces, shading: runs per scene (3)"
+    )
     bench.add_argument(
         "--algorithms",
         type=_names,

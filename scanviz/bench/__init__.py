@@ -5,7 +5,8 @@ measures installed peers (OpenCV, ...) on the same scenes in the same run;
 ``grading`` prints how many students a class is graded at per minute;
 ``visibility`` times every visibility algorithm against the z-buffer;
 ``surfaces`` times the floating horizon, the Floating Perimeter Algorithm and
-the z-buffer on grid surfaces and prints Wang's Table 2-4 storage beside ours.
+the z-buffer on grid surfaces and prints Wang's Table 2-4 storage beside ours;
+``shading`` times flat, Gouraud, fast Phong and Phong against their error.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import statistics
 import time
 from collections.abc import Callable
 
-SUITES = ("raster", "render", "coverage", "grading", "visibility", "surfaces")
+SUITES = ("raster", "render", "coverage", "grading", "visibility", "surfaces", "shading")
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -60,5 +61,9 @@ def run(suite: str, *, quick: bool = False, plot: str | None = None, **options: 
         from .surfaces import run_surfaces
 
         run_surfaces(quick=quick, plot=plot, **options)
+    elif suite == "shading":
+        from .shading import run_shading
+
+        run_shading(quick=quick, plot=plot, **options)
     else:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")

@@ -18,7 +18,8 @@ dissertation's model (docs/shading-fast-phong.md, "In render"):
   (ambient counted once), as `illuminate` sums them;
 * L and V constant over a triangle: toward a directional light, toward a
   point light and toward the eye from the triangle's centroid (world space);
-* two-sided: vertex normals turned toward the viewer;
+* two-sided: a triangle whose normals, summed, face away from the viewer has
+  all three reversed;
 * one material per polygon, its first vertex's.
 """
 
@@ -77,7 +78,9 @@ def _triangle(
     else:
         to_viewer = unit_vectors(np.subtract(camera.eye, camera.look_at))
     unit = unit_vectors(normals)
-    facing = np.where((unit @ to_viewer < 0)[:, None], -unit, unit)  # two-sided, per vertex
+    # Two-sided per triangle: a triangle seen from behind gets all three normals reversed. (Per
+    # vertex, a silhouette triangle would interpolate between normals turned opposite ways.)
+    facing = -unit if unit.sum(axis=0) @ to_viewer < 0 else unit
     lights = scene.lights or ()
     total = None
     for index, light in enumerate(lights or (None,)):
