@@ -225,8 +225,12 @@ def column_heights(piece: np.ndarray, width: int) -> tuple[np.ndarray, np.ndarra
     return columns, np.interp(columns, piece[:, 0], piece[:, 1])
 
 
-def flag(y: float, up: float, low: float) -> int:
-    """+1 on or above the upper horizon, -1 on or below the lower one, 0 hidden (step 3)."""
+@njit(cache=True)
+def flag(y: float, up: float, low: float) -> int:  # pragma: no cover - compiled
+    """+1 on or above the upper horizon, -1 on or below the lower one, 0 hidden (step 3).
+
+    Compiled, so the traced loop and `_horizon_pass` run this one definition.
+    """
     if y >= up:
         return 1
     return -1 if y <= low else 0
@@ -240,14 +244,10 @@ def crossing(start: tuple, end: tuple, horizon: tuple) -> tuple[float, float]:
     >>> crossing((0.0, 0.0), (1.0, 2.0), (1.0, 1.0))
     (0.5, 1.0)
     """
-    above_start, above_end = start[1] - horizon[0], end[1] - horizon[1]
-    if not np.isfinite(above_start):
-        t = 0.0
-    elif not np.isfinite(above_end):
-        t = 1.0
-    else:  # equal differences only when both are 0: the segment lies on the horizon
-        t = above_start / (above_start - above_end) if above_start != above_end else 0.0
-    return (start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1]))
+    return _cut(
+        float(start[0]), float(start[1]), float(end[0]), float(end[1]),
+        float(horizon[0]), float(horizon[1]),
+    )  # fmt: skip
 
 
 def visible_parts(start, end, previous_flag, current_flag, up, low):
@@ -326,14 +326,8 @@ def _scan_piece(curve, columns, ys, up, low, drawn, counts, tracer) -> None:
 
 
 @njit(cache=True)
-def _flag(y, up, low):  # pragma: no cover - compiled; `flag`
-    if y >= up:
-        return 1
-    return -1 if y <= low else 0
-
-
-@njit(cache=True)
-def _cut(x0, y0, x1, y1, h0, h1):  # pragma: no cover - compiled; `crossing`
+def _cut(x0, y0, x1, y1, h0, h1):  # pragma: no cover - compiled; `crossing` and the pass
+    """`crossing` on scalars. An equal difference at both ends is 0 at both: on the horizon."""
     above_start, above_end = y0 - h0, y1 - h1
     if not np.isfinite(above_start):
         t = 0.0
@@ -375,7 +369,7 @@ def _horizon_pass(curves, up, low):  # pragma: no cover - compiled
             previous_flag, previous_y = 2, 0.0  # 2: no previous column in this piece
             for x in range(start, stop + 1):
                 y = np.interp(float(x), px, py)
-                flag_now = _flag(y, up[x], low[x])
+                flag_now = flag(y, up[x], low[x])
                 if previous_flag != 2:
                     if previous_flag == flag_now:
                         if flag_now != 0:
