@@ -231,48 +231,45 @@ def test_lesson_runs_and_steps_in_jupyterlab(lab_url, browser):
     assert after != before, f"the AET table did not change in {NEXT_CLICKS} steps:\n{before}"
 
 
-def test_visibility_lesson_runs_and_its_depth_sort_stepper_steps(lab_url, browser):
-    page = browser.new_page()
-    _open(page, lab_url, VISIBILITY_LESSON)
-    _run_all_cells(page, Path(VISIBILITY_LESSON).stem)
-    stepper = page.locator(".jp-OutputArea-output", has_text=DEPTH_SORT_TITLE).first
+def _caption_before_and_after_stepping(page: Page, lab_url, lesson, title, caption, clicks):
+    """Run `lesson`, press Next `clicks` times on the stepper titled `title`; its caption before and after."""
+    _open(page, lab_url, lesson)
+    _run_all_cells(page, Path(lesson).stem)
+    stepper = page.locator(".jp-OutputArea-output", has_text=title).first
     stepper.scroll_into_view_if_needed()
-    pair = stepper.locator(".widget-html-content").filter(has_text=PAIR_CAPTION).first
-    before = pair.inner_text()
-    _click_next(page, stepper, NEXT_CLICKS)
+    shown = stepper.locator(".widget-html-content").filter(has_text=caption).first
+    before = shown.inner_text()
+    _click_next(page, stepper, clicks)
     page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
-    _screenshot(page, f"{Path(VISIBILITY_LESSON).stem}-stepped.png")
-    assert pair.inner_text() != before, f"the pair tested did not change in {NEXT_CLICKS} steps"
+    _screenshot(page, f"{Path(lesson).stem}-stepped.png")
+    return before, shown.inner_text()
+
+
+def test_visibility_lesson_runs_and_its_depth_sort_stepper_steps(lab_url, browser):
+    before, after = _caption_before_and_after_stepping(
+        browser.new_page(), lab_url, VISIBILITY_LESSON, DEPTH_SORT_TITLE, PAIR_CAPTION, NEXT_CLICKS
+    )
+    assert after != before, f"the pair tested did not change in {NEXT_CLICKS} steps"
 
 
 def test_grid_surfaces_lesson_08_runs_and_its_perimeter_stepper_steps(lab_url, browser):
-    page = browser.new_page()
-    _open(page, lab_url, SURFACES_LESSON)
-    _run_all_cells(page, Path(SURFACES_LESSON).stem)
-    stepper = page.locator(".jp-OutputArea-output", has_text=PERIMETER_TITLE).first
-    stepper.scroll_into_view_if_needed()
-    caption = stepper.locator(".widget-html-content").filter(has_text=PERIMETER_CAPTION).first
-    before = caption.inner_text()
-    _click_next(page, stepper, NEXT_CLICKS)
-    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
-    _screenshot(page, f"{Path(SURFACES_LESSON).stem}-stepped.png")
-    assert caption.inner_text() != before, f"the step shown did not change in {NEXT_CLICKS} steps"
+    before, after = _caption_before_and_after_stepping(
+        browser.new_page(),
+        lab_url,
+        SURFACES_LESSON,
+        PERIMETER_TITLE,
+        PERIMETER_CAPTION,
+        NEXT_CLICKS,
+    )
+    assert after != before, f"the step shown did not change in {NEXT_CLICKS} steps"
 
 
 def test_fast_shading_lesson_09_runs_and_its_fill_stepper_steps(lab_url, browser):
-    page = browser.new_page()
-    _open(page, lab_url, SHADING_LESSON)
-    _run_all_cells(page, Path(SHADING_LESSON).stem)
-    stepper = page.locator(".jp-OutputArea-output", has_text=FILL_TITLE).first
-    stepper.scroll_into_view_if_needed()
-    caption = stepper.locator(".widget-html-content").filter(has_text=FILL_CAPTION).first
-    before = caption.inner_text()
-    _click_next(page, stepper, NEXT_CLICKS * 5)  # the edge table's events come before any span
-    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
-    _screenshot(page, f"{Path(SHADING_LESSON).stem}-stepped.png")
-    assert caption.inner_text() != before, (
-        f"the span shown did not change in {NEXT_CLICKS * 5} steps"
+    clicks = NEXT_CLICKS * 5  # the edge table's events come before any span
+    before, after = _caption_before_and_after_stepping(
+        browser.new_page(), lab_url, SHADING_LESSON, FILL_TITLE, FILL_CAPTION, clicks
     )
+    assert after != before, f"the span shown did not change in {clicks} steps"
 
 
 def _answer_with(path: Path, source: str) -> None:
