@@ -108,7 +108,7 @@ def run_shading(
     print("\n".join(lines))
     print(
         "fast_phong: Taylor quadratics about each triangle's first vertex, forward differences and the "
-        "specular table, shaded per triangle in Python (no compiled pass yet)"
+        "specular table, all triangles in one compiled pass (pipeline/fast_shade.py)"
     )
     if plot:
         _plot(rows, plot)

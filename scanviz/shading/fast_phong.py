@@ -273,7 +273,7 @@ def _setup(vertices, normals, to_light, to_viewer, model, expansion, size, sampl
         light,
         viewer,
         plane,
-        rational_forms(plane, light, viewer),
+        rational_forms(plane, to_light, to_viewer),  # normalised once, as the batch kernel does
     )
     return covered, setup
 

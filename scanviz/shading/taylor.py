@@ -17,6 +17,7 @@ import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
 from ..conventions import check_choice
 from ..geometry import as_coordinates
@@ -53,12 +54,47 @@ def _rgb(name: str, value: object) -> tuple[float, float, float]:
     return tuple(float(v) for v in array)
 
 
+@njit(cache=True)
+def _unit3(vector):
+    """(unit vector, ok): `vector` scaled by its largest component, then by its length.
+
+    Compiled, and called by both the Python functions here and the batch
+    kernel of `scanviz.shading.fast_phong_kernels`, so both get the same bits;
+    ok is False (and the result zero) for a zero vector.
+    """
+    unit = np.zeros(3)
+    largest = max(abs(vector[0]), abs(vector[1]), abs(vector[2]))
+    if not largest > 0:
+        return unit, False
+    x, y, z = vector[0] / largest, vector[1] / largest, vector[2] / largest
+    length = math.sqrt(x * x + y * y + z * z)
+    unit[0], unit[1], unit[2] = x / length, y / length, z / length
+    return unit, True
+
+
+@njit(cache=True)
+def _dot3(u, v):
+    """u·v summed left to right (no BLAS, whose order and fused multiply-adds vary)."""
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+
+@njit(cache=True)
+def _halfway(light, viewer):
+    """(Ĥ, ok) for unit L and V; ok is False where they are opposite (|L + V| <= 1e-12)."""
+    total = np.empty(3)
+    for k in range(3):
+        total[k] = light[k] + viewer[k]
+    if math.sqrt(_dot3(total, total)) <= 1e-12:  # below this H is rounding noise
+        return np.zeros(3), False
+    return _unit3(total)
+
+
 def _direction(name: str, value: object) -> np.ndarray:
     vector = _vector(name, value)
-    length = math.hypot(*vector)
-    if not 0 < length < math.inf:
+    unit, ok = _unit3(vector)
+    if not (ok and np.isfinite(unit).all()):
         raise ValueError(f"{name!r} must be a nonzero direction; got {vector.tolist()}")
-    return vector / length
+    return unit
 
 
 def _normals(value: object) -> np.ndarray:
@@ -184,18 +220,31 @@ def normal_plane(
     >>> A.tolist(), B.tolist(), C.tolist()
     ([0.25, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 1.0])
     """
-    (xu, yu), (xv, yv), (xw, yw) = as_coordinates(xy, "'xy'", (3, 2)).tolist()
-    nu, nv, nw = _normals(normals)
-    ox, oy = _vector("origin", origin, 2)
-    xv, yv, xw, yw = xv - xu, yv - yu, xw - xu, yw - yu
-    determinant = xv * yw - xw * yv
-    if determinant == 0:
+    vertices = np.ascontiguousarray(as_coordinates(xy, "'xy'", (3, 2)), dtype=np.float64)
+    a, b, c, ok = _plane(vertices, _normals(normals), _vector("origin", origin, 2))
+    if not ok:
         raise ValueError(
             f"'xy' must span a triangle of nonzero area; got {np.asarray(xy).tolist()}"
         )
-    a = (yv * (nu - nw) + yw * (nv - nu)) / determinant
-    b = (nu * (xw - xv) + nw * xv - nv * xw) / determinant
-    return a, b, nu + a * (ox - xu) + b * (oy - yu)
+    return a, b, c
+
+
+@njit(cache=True)
+def _plane(vertices, normals, origin):
+    """(A, B, C, ok) of `normal_plane`; ok is False for zero area (compiled, shared with the kernels)."""
+    a, b, c = np.zeros(3), np.zeros(3), np.zeros(3)
+    xu, yu = vertices[0, 0], vertices[0, 1]
+    xv, yv = vertices[1, 0] - xu, vertices[1, 1] - yu
+    xw, yw = vertices[2, 0] - xu, vertices[2, 1] - yu
+    determinant = xv * yw - xw * yv
+    if determinant == 0:
+        return a, b, c, False
+    for k in range(3):
+        nu, nv, nw = normals[0, k], normals[1, k], normals[2, k]
+        a[k] = (yv * (nu - nw) + yw * (nv - nu)) / determinant
+        b[k] = (nu * (xw - xv) + nw * xv - nv * xw) / determinant
+        c[k] = nu + a[k] * (origin[0] - xu) + b[k] * (origin[1] - yu)
+    return a, b, c, True
 
 
 @dataclass(frozen=True)
@@ -265,13 +314,12 @@ def halfway_vector(to_light: object, to_viewer: object) -> np.ndarray:
     >>> halfway_vector((1, 0, 1), (-1, 0, 1)).tolist()
     [0.0, 0.0, 1.0]
     """
-    total = _direction("to_light", to_light) + _direction("to_viewer", to_viewer)
-    length = math.hypot(*total)
-    if length <= 1e-12:  # below this H is rounding noise
+    halfway, ok = _halfway(_direction("to_light", to_light), _direction("to_viewer", to_viewer))
+    if not ok:
         raise ValueError(
             "'to_light' and 'to_viewer' must not be opposite: they have no halfway vector"
         )
-    return total / length
+    return halfway
 
 
 def rational_forms(
@@ -301,20 +349,38 @@ def rational_forms(
     """
     a, b, c = (_vector(name, v) for name, v in zip("ABC", plane, strict=True))
     light, viewer = _direction("to_light", to_light), _direction("to_viewer", to_viewer)
-    try:
-        halfway = halfway_vector(light, viewer)
-    except ValueError:
-        halfway = np.zeros(3)
-    la, lb, lc = float(light @ a), float(light @ b), float(light @ c)
-    va, vb, vc = float(viewer @ a), float(viewer @ b), float(viewer @ c)
-    return RationalForms(
-        *(la, lb, lc, va, vb, vc),
-        *(float(a @ a), float(2 * a @ b), float(b @ b)),
-        *(float(2 * a @ c), float(2 * b @ c), float(c @ c)),
-        *(2 * la * va, 2 * (la * vb + lb * va), 2 * lb * vb),
-        *(2 * (la * vc + lc * va), 2 * (lb * vc + lc * vb), 2 * lc * vc),
-        float(light @ viewer),
-        *(float(halfway @ a), float(halfway @ b), float(halfway @ c)),
+    halfway, _ = _halfway(light, viewer)  # zero where there is none
+    return RationalForms(*(float(v) for v in _forms(a, b, c, light, viewer, halfway)))
+
+
+@njit(cache=True)
+def _forms(a, b, c, light, viewer, halfway):
+    """The 22 scalars of `RationalForms`, in field order (compiled, shared with the kernels)."""
+    la, lb, lc = _dot3(light, a), _dot3(light, b), _dot3(light, c)
+    va, vb, vc = _dot3(viewer, a), _dot3(viewer, b), _dot3(viewer, c)
+    return (
+        la,
+        lb,
+        lc,
+        va,
+        vb,
+        vc,
+        _dot3(a, a),
+        2 * _dot3(a, b),
+        _dot3(b, b),
+        2 * _dot3(a, c),
+        2 * _dot3(b, c),
+        _dot3(c, c),
+        2 * la * va,
+        2 * (la * vb + lb * va),
+        2 * lb * vb,
+        2 * (la * vc + lc * va),
+        2 * (lb * vc + lc * vb),
+        2 * lc * vc,
+        _dot3(light, viewer),
+        _dot3(halfway, a),
+        _dot3(halfway, b),
+        _dot3(halfway, c),
     )
 
 
@@ -324,12 +390,13 @@ def rational_forms(
 def _theta_series(a, b, c, d, e, f, g, h, i, root):
     """(T5, T4, T3, T2, T1, T0) of (a x + b y + c) / sqrt(d x² + ... + i); root = sqrt(i).
 
-    Plain arithmetic only, so the same formulas run on floats and on sympy symbols.
+    Plain arithmetic only (products, not powers), so the same formulas run on
+    floats, on sympy symbols and compiled by numba, with the same bits.
     """
     return (
-        (3 * c * g**2 - 4 * c * d * i - 4 * a * g * i) / (8 * i**2 * root),
-        (3 * c * g * h - 2 * c * e * i - 2 * b * g * i - 2 * a * h * i) / (4 * i**2 * root),
-        (3 * c * h**2 - 4 * c * f * i - 4 * b * h * i) / (8 * i**2 * root),
+        (3 * c * g * g - 4 * c * d * i - 4 * a * g * i) / (8 * i * i * root),
+        (3 * c * g * h - 2 * c * e * i - 2 * b * g * i - 2 * a * h * i) / (4 * i * i * root),
+        (3 * c * h * h - 4 * c * f * i - 4 * b * h * i) / (8 * i * i * root),
         (2 * a * i - c * g) / (2 * i * root),
         (2 * b * i - c * h) / (2 * i * root),
         c / root,
@@ -339,13 +406,18 @@ def _theta_series(a, b, c, d, e, f, g, h, i, root):
 def _phi_series(l, m, o, p, q, w, d, e, f, g, h, i, k_lv):  # noqa: E741
     """(T55, T44, T33, T22, T11, T00) of (l x² + ... + w) / (d x² + ... + i) - k_LV."""
     return (
-        (l * i**2 - d * w * i - g * p * i + g**2 * w) / i**3,
-        (m * i**2 - e * w * i - h * p * i - g * q * i + 2 * g * h * w) / i**3,
-        (o * i**2 - f * w * i - h * q * i + h**2 * w) / i**3,
-        (p * i - g * w) / i**2,
-        (q * i - h * w) / i**2,
+        (l * i * i - d * w * i - g * p * i + g * g * w) / (i * i * i),
+        (m * i * i - e * w * i - h * p * i - g * q * i + 2 * g * h * w) / (i * i * i),
+        (o * i * i - f * w * i - h * q * i + h * h * w) / (i * i * i),
+        (p * i - g * w) / (i * i),
+        (q * i - h * w) / (i * i),
         w / i - k_lv,
     )
+
+
+# The same formulas compiled: `taylor_coefficients` and the batch kernel both evaluate these.
+theta_series = njit(cache=True)(_theta_series)
+phi_series = njit(cache=True)(_phi_series)
 
 
 @dataclass(frozen=True)
@@ -397,9 +469,9 @@ def taylor_coefficients(forms: RationalForms) -> TaylorCoefficients:
     root = math.sqrt(s.i)
     shape = (s.d, s.e, s.f, s.g, s.h, s.i)
     return TaylorCoefficients(
-        cos_theta=_theta_series(s.a, s.b, s.c, *shape, root),
-        cos_phi=_phi_series(s.l, s.m, s.o, s.p, s.q, s.w, *shape, s.k_lv),
-        n_dot_h=_theta_series(s.ha, s.hb, s.hc, *shape, root),
+        cos_theta=theta_series(s.a, s.b, s.c, *shape, root),
+        cos_phi=phi_series(s.l, s.m, s.o, s.p, s.q, s.w, *shape, s.k_lv),
+        n_dot_h=theta_series(s.ha, s.hb, s.hc, *shape, root),
     )
 
 
