@@ -256,6 +256,7 @@ def _cmd_render(args: argparse.Namespace) -> None:
         edges=args.edges,
         mask=args.mask,
         weights=args.weights,
+        expansion=args.expansion,
     )
     if args.plan:
         print(result.plan)
@@ -560,6 +561,12 @@ def _add_render_options(render: argparse.ArgumentParser) -> None:
     render.add_argument("--edges", action="store_true", help="draw feature edges")
     render.add_argument("--mask", default="8x8", choices=["4x4", "8x4", "8x8"], help="a-buffer")
     render.add_argument("--weights", default="area", choices=["area", "mask"], help="a-buffer")
+    render.add_argument(
+        "--expansion",
+        default="vertex",
+        choices=["vertex", "centroid"],
+        help="fast_phong: the Taylor expansion point of each triangle",
+    )
     render.add_argument(
         "--perspective-correct",
         action=argparse.BooleanOptionalAction,

@@ -220,6 +220,9 @@ def test_issue8_d13_render_options_reach_the_renderer(monkeypatch):
     assert seen["visibility"] == "abuffer" and seen["mask"] == "8x4"
     assert main([*argv, "--no-cull", "--weights", "mask", "--edges"]) == 0
     assert seen["cull"] is False and seen["weights"] == "mask" and seen["edges"] is True
+    assert seen["expansion"] == "vertex"
+    assert main([*argv, "--shading", "fast_phong", "--expansion", "centroid"]) == 0
+    assert seen["shading"] == "fast_phong" and seen["expansion"] == "centroid"
 
 
 def test_conformance_command_parses_its_arguments():

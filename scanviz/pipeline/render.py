@@ -29,6 +29,7 @@ from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, check_s
 from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..scene.model import Material, Scene
+from ..shading.taylor import EXPANSIONS
 from ..trace import Recorder
 from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
 from .antialiased import _antialiased
@@ -66,6 +67,7 @@ def render(
     edges: bool = False,
     mask: str = "8x8",
     weights: str = "area",
+    expansion: str = "vertex",
     trace: object = None,
 ) -> RenderResult:
     """Render a scene through the classic pipeline.
@@ -98,6 +100,10 @@ def render(
         Sub-samples per pixel of the a-buffer's pixel masks.
     weights : {"area", "mask"}
         The packer weighs fragments by exact area or by mask bits.
+    expansion : {"vertex", "centroid"}
+        Fast Phong's Taylor expansion point in each triangle: its first vertex
+        (the dissertation) or its centroid (smaller error,
+        docs/shading-fast-phong.md). The other shadings ignore it.
     sample, subpixel_bits
         As in `scanviz.scan_convert`.
     perspective_correct : bool
@@ -148,6 +154,7 @@ def render(
     check_subpixel_bits(subpixel_bits)
     check_choice("mask", mask, ("4x4", "8x4", "8x8"))
     check_choice("weights", weights, ("area", "mask"))
+    check_choice("expansion", expansion, EXPANSIONS)
     if not isinstance(scene, Scene):
         raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
     tracer = as_tracer(trace)
@@ -166,7 +173,9 @@ def render(
     options = {"subpixel_bits": subpixel_bits, "perspective": perspective_correct, "tracer": tracer}
     solved = alpha = abuffer = None
     if chosen is not None:
-        image, solved = _opaque(scene, prepared, chosen, width, height, shading, sample, **options)
+        image, solved = _opaque(
+            scene, prepared, chosen, width, height, shading, sample, expansion=expansion, **options
+        )
         depth, polygon = solved.depth, solved.polygon
     else:
         image, depth, polygon, abuffer = _antialiased(
@@ -237,7 +246,18 @@ def _check_no_nan(stage: str, **arrays) -> None:
 
 
 def _opaque(
-    scene, prepared, chosen, width, height, shading, sample, *, subpixel_bits, perspective, tracer
+    scene,
+    prepared,
+    chosen,
+    width,
+    height,
+    shading,
+    sample,
+    *,
+    expansion,
+    subpixel_bits,
+    perspective,
+    tracer,
 ):
     """(image, VisibilityResult): the visible pixels by `chosen`, shaded afterwards."""
     stats = prepared.stats
@@ -265,7 +285,7 @@ def _opaque(
         return image, result
     if shading == "fast_phong":  # per screen triangle after visibility (pipeline/fast_shade.py)
         image, stats.shaded_pixels = fast_phong_image(
-            scene, prepared.polygons, result, width, height, sample, subpixel_bits
+            scene, prepared.polygons, result, width, height, sample, subpixel_bits, expansion
         )
         return image, result
     _exact_materials(prepared.polygons, result)
