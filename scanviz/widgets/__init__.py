@@ -5,6 +5,7 @@ from .bsp import BspView, bsp_stepper
 from .clip import plot_clip
 from .depth_sort import DepthSortView, PainterView, depth_sort_stepper, painter_stepper
 from .editor import PolygonEditor
+from .fast_phong import FastPhongView, fast_phong_stepper
 from .fill import FillView, fill_stepper
 from .lines import LineView, line_stepper
 from .model import StepModel
@@ -29,6 +30,8 @@ from .zbuffer import InterpolationView, ZBufferView, interpolation_stepper, zbuf
 
 __all__ = [
     "ABufferInspector",
+    "FastPhongView",
+    "fast_phong_stepper",
     "FillView",
     "fill_stepper",
     "RelightView",
