@@ -271,6 +271,7 @@ def _cmd_render(args: argparse.Namespace) -> None:
 
 
 SURFACE_ALGORITHMS = ("fpa", "fha", "zbuffer")
+PHASE_SURFACE = "three_poles"  # the complex built-in of §2.9
 
 
 def _vector3(text: str) -> tuple[float, float, float]:
@@ -303,6 +304,17 @@ def _load_surface(name: str, points: int | None):
     return GridSurface.from_database(name)
 
 
+def _load_phase(args: argparse.Namespace):
+    """`three_poles_two_zeros` for the surface name ``three_poles`` (None for any other)."""
+    from .surfaces import three_poles_two_zeros
+
+    if args.surface != PHASE_SURFACE:
+        if args.marker is not None or args.ring_steps != 64:
+            raise ValueError(f"--marker and --ring-steps apply to {PHASE_SURFACE} only")
+        return None
+    return three_poles_two_zeros() if args.points is None else three_poles_two_zeros(args.points)
+
+
 def _default_view(surface, point, direction, parallel: bool):
     """The dissertation's (6, 8, 3) for [-2, 2]^2, scaled to the domain, looking at its centre."""
     from .surfaces import View
@@ -322,9 +334,15 @@ def _cmd_surface(args: argparse.Namespace) -> None:
 
     if args.output is not None:
         _image_format(args.output)  # refuse a bad name before the work
-    surface = _load_surface(args.surface, args.points)
+    phase = _load_phase(args)  # the complex built-in, coloured by its phase; else None
+    surface = phase.surface if phase is not None else _load_surface(args.surface, args.points)
     view = _default_view(surface, args.viewpoint, args.direction, args.parallel)
     w, h = args.width, args.height
+    scene = None
+    if phase is not None:
+        from .surfaces import phase_scene
+
+        scene = phase_scene(phase, view, w, h, args.ring_steps, args.marker)
     if args.algorithm == "fha":
         result = floating_horizon(surface, view, w, h, family=args.family)
         image, summary = (
@@ -332,7 +350,9 @@ def _cmd_surface(args: argparse.Namespace) -> None:
             f"{result.stats.curves} curves, {result.stats.segments} parts",
         )
     elif args.algorithm == "fpa":
-        result = floating_perimeter(surface, view, w, h, args.mode, shading=args.shading)
+        result = floating_perimeter(
+            surface, view, w, h, args.mode, shading=args.shading, scene=scene
+        )
         s = result.stats
         image = result.image
         summary = (
@@ -341,7 +361,7 @@ def _cmd_surface(args: argparse.Namespace) -> None:
             else f"case {result.case}, {s.facets} facets, {s.samples} samples painted front to back"
         )
     else:
-        z = render(surface.scene(view, w, h), w, h, shading=args.shading)
+        z = render(scene or surface.scene(view, w, h), w, h, shading=args.shading)
         image, summary = z.image, f"{z.stats.polygons_drawn} triangles, {z.stats.clipped} clipped"
     if args.output is not None:
         _save_image(args.output, np.clip(image, 0.0, 1.0))
@@ -353,7 +373,9 @@ def _cmd_surface(args: argparse.Namespace) -> None:
 
 def _add_surface_options(surface: argparse.ArgumentParser) -> None:
     surface.add_argument(
-        "surface", help="gaussian, polynomial, rogers, random, or a database file (Table 2-1)"
+        "surface",
+        help="gaussian, polynomial, rogers, random, a database file (Table 2-1), or "
+        f"{PHASE_SURFACE}: |F| of three poles and two zeros, coloured by arg F through the colour ring",
     )
     surface.add_argument("-o", "--output", help=f"image file: {', '.join(IMAGE_FORMATS)}")
     surface.add_argument("--algorithm", choices=SURFACE_ALGORITHMS, default="fpa")
@@ -377,6 +399,19 @@ def _add_surface_options(surface: argparse.ArgumentParser) -> None:
         "--direction", type=_vector3, metavar="DX,DY,DZ", help="default: towards the centre"
     )
     surface.add_argument("--parallel", action="store_true", help="parallel projection")
+    surface.add_argument(
+        "--ring-steps",
+        type=_at_least_one,
+        default=64,
+        metavar="S",
+        help=f"{PHASE_SURFACE}: a ring of 3 S colours (64)",
+    )
+    surface.add_argument(
+        "--marker",
+        type=int,
+        metavar="K",
+        help=f"{PHASE_SURFACE}: ring entry K shown white (the colour replacement)",
+    )
     surface.add_argument("--width", type=_at_least_one, default=400, metavar="N")
     surface.add_argument("--height", type=_at_least_one, default=400, metavar="N")
 

@@ -546,3 +546,24 @@ def test_surface_errors_are_one_line(capsys, argv, message):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1
+
+
+def test_the_complex_surface_is_coloured_by_phase_with_a_marker_entry(tmp_path, capsys):
+    plain, marked = tmp_path / "plain.png", tmp_path / "marked.png"
+    argv = ["surface", "three_poles", "--mode", "surface", "--points", "21"]
+    size = ["--width", "80", "--height", "80"]
+    assert main([*argv, *size, "-o", str(plain)]) == 0
+    assert main([*argv, *size, "--ring-steps", "16", "--marker", "5", "-o", str(marked)]) == 0
+    assert "21x21 grid" in capsys.readouterr().out
+
+    def white(path):
+        image = matplotlib.image.imread(path)[..., :3]
+        return int((image > 0.99).all(axis=2).sum())
+
+    # the ring mixes two primaries at a time: no entry is white but the marker
+    assert white(plain) == 0 < white(marked)
+    colours = matplotlib.image.imread(plain)[..., :3].reshape(-1, 3)
+    lit = colours[colours.max(axis=1) > 0.05]
+    assert len(lit) > 1000 and (lit.min(axis=1) < 0.01).all()  # one primary is always off
+    assert main(["surface", "gaussian", "--marker", "3"]) == 2
+    assert "--marker and --ring-steps apply to three_poles only" in capsys.readouterr().err
