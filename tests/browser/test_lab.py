@@ -39,6 +39,8 @@ PERIMETER_CAPTION = re.compile(r"^\s*(start:|viewing case \d|facet \d+)")  # Per
 SHADING_LESSON = "09_fast_shading.ipynb"
 FILL_TITLE = "fill variants: one span at a time"  # fill_stepper's
 FILL_CAPTION = re.compile(r"^\s*(span \d+ of|no span yet)")  # FillView.text
+FAST_PHONG_TITLE = "fast Phong: one sample per step"  # fast_phong_stepper's
+FAST_PHONG_CAPTION = re.compile(r"^\s*(sample \d+ of|start: \d+ samples)")  # FastPhongView.text
 EXERCISE = "exercises/05_span_rule.ipynb"
 SCREENSHOTS = Path(__file__).resolve().parent / "screenshots"
 CHROMIUM_FLAGS = [
@@ -264,12 +266,21 @@ def test_grid_surfaces_lesson_08_runs_and_its_perimeter_stepper_steps(lab_url, b
     assert after != before, f"the step shown did not change in {NEXT_CLICKS} steps"
 
 
-def test_fast_shading_lesson_09_runs_and_its_fill_stepper_steps(lab_url, browser):
+def test_fast_shading_lesson_09_runs_and_its_fill_and_fast_phong_steppers_step(lab_url, browser):
+    page = browser.new_page()
     clicks = NEXT_CLICKS * 5  # the edge table's events come before any span
     before, after = _caption_before_and_after_stepping(
-        browser.new_page(), lab_url, SHADING_LESSON, FILL_TITLE, FILL_CAPTION, clicks
+        page, lab_url, SHADING_LESSON, FILL_TITLE, FILL_CAPTION, clicks
     )
     assert after != before, f"the span shown did not change in {clicks} steps"
+    stepper = page.locator(".jp-OutputArea-output", has_text=FAST_PHONG_TITLE).first
+    stepper.scroll_into_view_if_needed()
+    shown = stepper.locator(".widget-html-content").filter(has_text=FAST_PHONG_CAPTION).first
+    before = shown.inner_text()
+    _click_next(page, stepper, NEXT_CLICKS)
+    page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
+    _screenshot(page, f"{Path(SHADING_LESSON).stem}-fast-phong-stepped.png")
+    assert shown.inner_text() != before, f"the sample shown did not change in {NEXT_CLICKS} steps"
 
 
 def _answer_with(path: Path, source: str) -> None:
