@@ -86,3 +86,22 @@ def test_the_expansion_point_is_a_render_option_checked_by_name():
     assert np.array_equal(render(sphere, 64, 64, expansion="centroid").image, exact.image)
     with pytest.raises(ValueError, match="'expansion'"):
         render(sphere, 8, 8, shading="fast_phong", expansion="middle")
+
+
+def test_a_replaced_step_reaches_render_through_the_reference_loop():
+    from scanviz import steps
+
+    sphere = builtin_scene("sphere", level=2)
+    plain = render(sphere, 32, 32, shading="fast_phong")
+    calls = []
+
+    def counted(value, difference, t5):
+        calls.append(1)
+        return value + difference, difference + 2 * t5
+
+    with steps.using(forward_difference=counted):
+        same = render(sphere, 32, 32, shading="fast_phong")
+    with steps.using(forward_difference=lambda value, difference, t5: (value, difference)):
+        frozen = render(sphere, 32, 32, shading="fast_phong")
+    assert calls and np.array_equal(same.image, plain.image)  # the loop equals the kernel
+    assert not np.array_equal(frozen.image, plain.image)

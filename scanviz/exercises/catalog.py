@@ -15,7 +15,7 @@ from .core import Exercise
 
 MODULES = (
     "lines", "scan", "triangles", "interpolation", "zbuffer", "viewing", "abuffer", "depth_sort",
-    "bsp", "perimeter",
+    "bsp", "perimeter", "fast_phong",
 )  # fmt: skip
 
 _CATALOG: dict[str, Exercise] = {}

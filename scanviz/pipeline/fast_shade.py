@@ -25,7 +25,7 @@ dissertation's model (docs/shading-fast-phong.md, "In render"):
 
 All triangles go through one compiled pass (`fast_phong_triangles`); the
 loop over `fast_phong_triangle` stays as its reference (``compiled=False``,
-and the fallback for a vertex grid int64 cannot hold), and the two give the
+while a step of `scanviz.steps` is replaced, and the fallback for a vertex grid int64 cannot hold), and the two give the
 same image bit for bit (tests/test_render_fast_phong.py).
 """
 
@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import steps
 from ..raster.api import _snap_batch
 from ..scene.model import Scene
 from ..shading.fast_phong import ReflectionModel, fast_phong_triangle
@@ -63,6 +64,8 @@ def fast_phong_image(
         return image, 0
     to_lights, to_viewers, normals = _directions(scene, fan)
     models, table = _models(scene, fan)
+    # a replaced step of scanviz.steps runs the reference loop, as every traced path promises
+    compiled = compiled and not steps.replaced()
     snapped = _snap_batch(fan.xy, sample, bits) if compiled else None
     if snapped is None:
         shaded = _reference(fan, normals, to_lights, to_viewers, models, table, result, image,

@@ -29,6 +29,7 @@ from dataclasses import astuple, dataclass
 import numpy as np
 from numba import njit
 
+from .. import steps
 from ..conventions import check_choice, check_index, sample_offset
 from ..geometry import Polygon, as_coordinates
 from ..raster import triangle_samples
@@ -38,7 +39,7 @@ from ..trace import Recorder, Trace
 from ..trace.events import FastPhongPixel, FastPhongSetup, RationalFormsRecord
 from ..vectors import unit_vectors
 from .illumination import _vector
-from .lut import lut_level, lut_level_coherent, lut_level_compiled
+from .lut import level_comparisons, lut_level_compiled
 from .taylor import (
     CHANNELS,
     COS_SPECULAR,
@@ -114,10 +115,30 @@ def _color_kernel(values, ambient, table):
     return levels, colors
 
 
+@steps.step(
+    "forward_difference",
+    takes="a quadratic's value Q at a sample, its difference dQ to the next sample, and T5, "
+    "its x² coefficient",
+    returns="(Q, dQ) at the next sample along the span: Q + dQ and dQ + 2 T5",
+)
+def forward_difference(value: float, difference: float, t5: float) -> tuple[float, float]:
+    """One sample right along a span of Q = T5 x² + T4 xy + T3 y² + T2 x + T1 y + T0.
+
+    dQ(x) = Q(x + 1) - Q(x) = T5 (2x + 1) + T4 y + T2 changes by 2 T5 per sample, so
+    Q(x + 1) = Q(x) + dQ(x) and dQ(x + 1) = dQ(x) + 2 T5: two additions.
+
+    >>> forward_difference(4.0, 5.0, 1.0)  # x² at x = 2 (and 2x + 1): 9 and 7 at x = 3
+    (9.0, 7.0)
+    """
+    return value + difference, difference + 2 * t5
+
+
 def _shade_reference(quadratics, ys, xs, x0, y0, ambient, table, tracer, polygon):
-    """The two kernels' arithmetic, one sample at a time, emitting ``fast_phong_pixel``."""
+    """The two kernels' arithmetic, one sample at a time, emitting ``fast_phong_pixel``; the
+    forward-difference step and the table look-up come from `scanviz.steps`."""
+    step, find_level = steps.get("forward_difference"), steps.get("specular_level")
     count, terms = len(ys), len(quadratics)
-    values, steps = np.empty((count, terms)), np.empty((count, terms))
+    values, differences = np.empty((count, terms)), np.empty((count, terms))
     levels, colors = np.empty(count, np.int64), np.empty((count, 3))
     rows, level = quadratics.tolist(), 0
     for k in range(count):
@@ -126,17 +147,15 @@ def _shade_reference(quadratics, ys, xs, x0, y0, ambient, table, tracer, polygon
         for j, (t5, t4, t3, t2, t1, t0) in enumerate(rows):
             if direct:
                 values[k, j] = t5 * x * x + t4 * x * y + t3 * y * y + t2 * x + t1 * y + t0
-                steps[k, j] = t5 * (2 * x + 1) + t4 * y + t2
+                differences[k, j] = t5 * (2 * x + 1) + t4 * y + t2
             else:
-                values[k, j] = values[k - 1, j] + steps[k - 1, j]
-                steps[k, j] = steps[k - 1, j] + 2 * t5
+                previous = float(values[k - 1, j]), float(differences[k - 1, j])
+                values[k, j], differences[k, j] = step(*previous, t5)
         cos_specular = float(values[k, COS_SPECULAR])
         # a span starts with a binary search, then steps from the previous sample's level
-        level, comparisons = (
-            lut_level(table, cos_specular, count=True)
-            if direct
-            else lut_level_coherent(table, cos_specular, level, count=True)
-        )
+        start = None if direct else level
+        level = find_level(table, cos_specular, start)
+        comparisons = level_comparisons(len(table), level, start)
         lit = bool(values[k, COS_THETA] > 0)
         specular = float(level) if lit else 0.0
         for c in range(3):
@@ -144,7 +163,7 @@ def _shade_reference(quadratics, ys, xs, x0, y0, ambient, table, tracer, polygon
             color = (diffuse if diffuse > ambient[c] else float(ambient[c])) + specular
             colors[k, c] = min(max(color, 0.0), LEVELS)
         levels[k] = level
-        if tracer.wants("fast_phong_pixel", polygon=polygon, y=int(ys[k])):
+        if tracer is not None and tracer.wants("fast_phong_pixel", polygon=polygon, y=int(ys[k])):
             tracer.emit(
                 FastPhongPixel(
                     polygon=polygon,
@@ -152,18 +171,18 @@ def _shade_reference(quadratics, ys, xs, x0, y0, ambient, table, tracer, polygon
                     y=int(ys[k]),
                     direct=bool(direct),
                     cos_theta=float(values[k, COS_THETA]),
-                    cos_theta_step=float(steps[k, COS_THETA]),
+                    cos_theta_step=float(differences[k, COS_THETA]),
                     cos_specular=cos_specular,
-                    cos_specular_step=float(steps[k, COS_SPECULAR]),
+                    cos_specular_step=float(differences[k, COS_SPECULAR]),
                     ambient_diffuse=_floats(values[k, CHANNELS]),
-                    ambient_diffuse_step=_floats(steps[k, CHANNELS]),
+                    ambient_diffuse_step=_floats(differences[k, CHANNELS]),
                     level=int(level),
                     comparisons=int(comparisons),
                     lit=lit,
                     color=_floats(colors[k]),
                 )
             )
-    return values, steps, levels, colors
+    return values, differences, levels, colors
 
 
 def forward_differences(
@@ -367,7 +386,8 @@ def fast_phong_triangle(
     subpixel_bits : int in 0..16, or None
         Vertex snapping, as for `scanviz.raster.triangle_samples`.
     trace : None, True, or Tracer
-        None runs the compiled kernel. A tracer runs the reference loop and
+        None runs the compiled kernel (the reference loop while a step of
+        `scanviz.steps` is replaced). A tracer runs the reference loop and
         receives ``fast_phong_setup`` (the coefficients), one
         ``fast_phong_pixel`` per sample (the differenced values and the table
         index), and `triangle_samples`' events.
@@ -425,7 +445,7 @@ def fast_phong_triangle(
         tracer.emit(_setup_event(setup, model, expansion, quadratics, polygon))
     x0, y0 = setup.sample_origin
     ambient = np.array(model.ambient_term)
-    if tracer is None:
+    if tracer is None and not steps.replaced():  # the kernels have no step table
         values, _ = _difference_kernel(quadratics, covered.ys, covered.xs, x0, y0)
         levels, colors = _color_kernel(values, ambient, model.table)
     else:

@@ -23,6 +23,7 @@ from fractions import Fraction
 import numpy as np
 from numba import njit
 
+from .. import steps
 from ..limits import check_memory
 
 _BYTES_PER_ENTRY = 8  # float64, built in place
@@ -231,6 +232,44 @@ def lut_level_coherent(
                 break
             level -= 1
     return (level, comparisons) if count else level
+
+
+@steps.step(
+    "specular_level",
+    takes="the table cos φ_1..cos φ_N (nondecreasing float64), a sample's cos φ and start: the "
+    "previous sample's level on the span (None at a span's first sample)",
+    returns="the level: the number of entries <= cos φ (a binary search at a span's start, a walk "
+    "from start after)",
+)
+def specular_level(table: np.ndarray, cos_phi: float, start: int | None) -> int:
+    """The level of `cos_phi` as fast Phong finds it: `lut_level` at a span's first sample, else
+    `lut_level_coherent` from the previous sample's level `start`.
+
+    >>> table = specular_lut(255, 1, 1, 6)
+    >>> specular_level(table, 0.7, None), specular_level(table, 0.7, 28), specular_level(table, 0.7, 31)
+    (30, 30, 30)
+    """
+    return lut_level(table, cos_phi) if start is None else lut_level_coherent(table, cos_phi, start)
+
+
+def level_comparisons(size: int, level: int, start: int | None = None) -> int:
+    """The comparisons `specular_level` makes on a table of `size` entries when it finds `level`.
+
+    Both searches branch only on whether an entry is <= cos φ, true for the first `level`
+    entries, so they make the same comparisons over the ranks 0..size-1 for level - 1/2.
+    A level or start outside [0, size] (from a replaced step) counts as the nearest end.
+
+    >>> table = specular_lut(255, 1, 1, 6)
+    >>> lut_level(table, 0.7, count=True), level_comparisons(255, 30)
+    ((30, 8), 8)
+    >>> lut_level_coherent(table, 0.7, 28, count=True), level_comparisons(255, 30, 28)
+    ((30, 3), 3)
+    """
+    ranks = np.arange(size, dtype=np.float64)
+    rank = min(max(int(level), 0), size) - 0.5
+    if start is None:
+        return lut_level(ranks, rank, count=True)[1]
+    return lut_level_coherent(ranks, rank, min(max(int(start), 0), size), count=True)[1]
 
 
 @njit(cache=True)
