@@ -687,7 +687,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--plot",
         metavar="PATH",
         help="coverage: error-vs-time plot file (default coverage.png); "
-        "visibility: time-vs-polygons, surfaces: time-vs-grid and -image plot file (default: none)",
+        "visibility: time-vs-polygons, surfaces: time-vs-grid and -image, "
+        "antialias: error-vs-time plot file (default: none)",
     )
     _add_suite_bench_options(bench)
     bench.set_defaults(run=_cmd_bench)

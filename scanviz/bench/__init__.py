@@ -6,7 +6,9 @@ measures installed peers (OpenCV, ...) on the same scenes in the same run;
 ``visibility`` times every visibility algorithm against the z-buffer;
 ``surfaces`` times the floating horizon, the Floating Perimeter Algorithm and
 the z-buffer on grid surfaces and prints Wang's Table 2-4 storage beside ours;
-``shading`` times flat, Gouraud, fast Phong and Phong against their error.
+``shading`` times flat, Gouraud, fast Phong and Phong against their error;
+``antialias`` compares DISLOP with Wu, Gupta-Sproull, supersampling, masks,
+skia and OpenCV on lines, edges and disks against the exact area.
 """
 
 from __future__ import annotations
@@ -15,7 +17,16 @@ import statistics
 import time
 from collections.abc import Callable
 
-SUITES = ("raster", "render", "coverage", "grading", "visibility", "surfaces", "shading")
+SUITES = (
+    "raster",
+    "render",
+    "coverage",
+    "grading",
+    "visibility",
+    "surfaces",
+    "shading",
+    "antialias",
+)
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -33,8 +44,8 @@ def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float 
 def run(suite: str, *, quick: bool = False, plot: str | None = None, **options: object) -> None:
     """Run one benchmark suite and print its table.
 
-    `plot` is where "coverage" (default coverage.png), "visibility" or
-    "surfaces" (default: no plot) saves its plot; `options` go to
+    `plot` is where "coverage" (default coverage.png), "visibility",
+    "surfaces" or "antialias" (default: no plot) saves its plot; `options` go to
     `run_visibility` or `run_surfaces`.
     """
     if suite == "raster":
@@ -65,5 +76,9 @@ def run(suite: str, *, quick: bool = False, plot: str | None = None, **options: 
         from .shading import run_shading
 
         run_shading(quick=quick, plot=plot, **options)
+    elif suite == "antialias":
+        from .antialias import run_antialias
+
+        run_antialias(quick=quick, plot=plot)
     else:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")
