@@ -1133,3 +1133,27 @@ class DislopColumn(Event):
     mid: float
     low: float
     spill: float
+
+
+@dataclass(frozen=True)
+class PostColumn(Event):
+    """One table look-up of post-anti-aliasing: a column (row, ``major == "y"``) of a segment.
+
+    ``segment`` indexes the input segments; ``x``, ``y`` is the middle pixel
+    (raster coordinates); ``i``, ``j`` the slope and distance indices;
+    ``dxy`` the distance they came from (the table's dxy_j with the simple
+    recurrence); ``up``, ``mid``, ``low`` the coverages read and blended
+    (quantised to levels with the intensity table), first-octant frame.
+    """
+
+    kind: ClassVar[str] = "post_column"
+    segment: int
+    x: int
+    y: int
+    major: str
+    i: int
+    j: int
+    dxy: float
+    up: float
+    mid: float
+    low: float
