@@ -338,6 +338,10 @@ def _cmd_surface(args: argparse.Namespace) -> None:
     surface = phase.surface if phase is not None else _load_surface(args.surface, args.points)
     view = _default_view(surface, args.viewpoint, args.direction, args.parallel)
     w, h = args.width, args.height
+    if args.antialias != "none" and args.algorithm != "fpa":
+        raise ValueError(f"--antialias applies to --algorithm fpa only; got {args.algorithm}")
+    if args.antialias != "none" and phase is not None:
+        raise ValueError(f"--antialias does not apply to {PHASE_SURFACE} (coloured by phase)")
     scene = None
     if phase is not None:
         from .surfaces import phase_scene
@@ -349,6 +353,8 @@ def _cmd_surface(args: argparse.Namespace) -> None:
             result.image,
             f"{result.stats.curves} curves, {result.stats.segments} parts",
         )
+    elif args.antialias != "none":
+        image, summary = _antialiased_surface(surface, view, w, h, args)
     elif args.algorithm == "fpa":
         result = floating_perimeter(
             surface, view, w, h, args.mode, shading=args.shading, scene=scene
@@ -371,6 +377,24 @@ def _cmd_surface(args: argparse.Namespace) -> None:
     )
 
 
+def _antialiased_surface(surface, view, w: int, h: int, args: argparse.Namespace):
+    """Wang's ch. 5 on the FPA: DISLOP or post-AA lines, or a surface with a smoothed silhouette."""
+    from .antialias.surfaces import antialiased_hidden_lines, smoothed_surface
+
+    if args.mode == "lines":  # black lines on white, as the aliased drawing
+        lines = antialiased_hidden_lines(
+            surface, view, w, h, method=args.antialias, background=1.0, intensity=0.0
+        )
+        summary = f"{lines.stats.segments} segments, {lines.stats.pixels} pixels touched"
+        return np.repeat(lines.image[..., None], 3, axis=-1), f"{args.antialias}: {summary}"
+    smooth = smoothed_surface(
+        surface, view, w, h, shading=args.shading, silhouettes=args.antialias,
+        background=(1.0, 1.0, 1.0),
+    )  # fmt: skip
+    summary = f"{smooth.stats.pieces} outline pieces, {smooth.stats.boundary} pixels blended"
+    return smooth.image, f"{args.antialias}: {summary}"
+
+
 def _add_surface_options(surface: argparse.ArgumentParser) -> None:
     surface.add_argument(
         "surface",
@@ -386,6 +410,12 @@ def _add_surface_options(surface: argparse.ArgumentParser) -> None:
         help="fpa: hidden lines or surfaces",
     )
     surface.add_argument("--family", choices=("x", "y"), default="x", help="fha: which curves")
+    surface.add_argument(
+        "--antialias",
+        choices=("dislop", "post", "none"),
+        default="none",
+        help="fpa (Wang ch. 5): lines by DISLOP_L or the line LUT; surface: the silhouette by area",
+    )
     surface.add_argument(
         "--shading", choices=("flat", "gouraud", "phong", "gooch"), default="phong"
     )
