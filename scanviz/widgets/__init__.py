@@ -1,6 +1,14 @@
 """Views of traces for notebooks. They draw what the core computed; they never compute it."""
 
 from .abuffer import ABufferInspector, FragmentInsertionView, PackerView
+from .antialias import (
+    DislopView,
+    dislop_stepper,
+    plot_coverage_comparison,
+    plot_period_table,
+    plot_post_antialias,
+    plot_ropiness,
+)
 from .bsp import BspView, bsp_stepper
 from .clip import plot_clip
 from .depth_sort import DepthSortView, PainterView, depth_sort_stepper, painter_stepper
@@ -30,6 +38,12 @@ from .zbuffer import InterpolationView, ZBufferView, interpolation_stepper, zbuf
 
 __all__ = [
     "ABufferInspector",
+    "DislopView",
+    "dislop_stepper",
+    "plot_coverage_comparison",
+    "plot_period_table",
+    "plot_post_antialias",
+    "plot_ropiness",
     "FastPhongView",
     "fast_phong_stepper",
     "FillView",
