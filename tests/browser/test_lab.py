@@ -40,6 +40,9 @@ SHADING_LESSON = "09_fast_shading.ipynb"
 FILL_TITLE = "fill variants: one span at a time"  # fill_stepper's
 FILL_CAPTION = re.compile(r"^\s*(span \d+ of|no span yet)")  # FillView.text
 FAST_PHONG_TITLE = "fast Phong: one sample per step"  # fast_phong_stepper's
+ANTIALIAS_LESSON = "10_antialiasing.ipynb"
+DISLOP_TITLE = "DISLOP_L: one column per step"  # dislop_stepper's
+DISLOP_CAPTION = re.compile(r"^\s*(column \d+ of|start: \d+ columns)")  # DislopView.text
 FAST_PHONG_CAPTION = re.compile(r"^\s*(sample \d+ of|start: \d+ samples)")  # FastPhongView.text
 EXERCISE = "exercises/05_span_rule.ipynb"
 SCREENSHOTS = Path(__file__).resolve().parent / "screenshots"
@@ -281,6 +284,13 @@ def test_fast_shading_lesson_09_runs_and_its_fill_and_fast_phong_steppers_step(l
     page.locator(".jp-StatusBar-TextItem", has_text=KERNEL_IDLE).wait_for()  # figures redrawn
     _screenshot(page, f"{Path(SHADING_LESSON).stem}-fast-phong-stepped.png")
     assert shown.inner_text() != before, f"the sample shown did not change in {NEXT_CLICKS} steps"
+
+
+def test_antialiasing_lesson_10_runs_and_its_dislop_stepper_steps(lab_url, browser):
+    before, after = _caption_before_and_after_stepping(
+        browser.new_page(), lab_url, ANTIALIAS_LESSON, DISLOP_TITLE, DISLOP_CAPTION, NEXT_CLICKS
+    )
+    assert after != before, f"the column shown did not change in {NEXT_CLICKS} steps"
 
 
 def _answer_with(path: Path, source: str) -> None:
