@@ -113,4 +113,4 @@ def using(**replacements: Callable) -> Iterator[None]:
 
 def _load_reference_modules() -> None:
     """Import every module that registers steps, so the table is complete."""
-    from . import abuffer, pipeline, raster, surfaces, transform, visibility  # noqa: F401
+    from . import abuffer, antialias, pipeline, raster, surfaces, transform, visibility  # noqa: F401

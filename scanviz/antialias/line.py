@@ -24,6 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .. import steps
 from ..trace import Tracer
 from ..trace.events import DislopColumn
 from . import columns
@@ -53,6 +54,23 @@ def canonical(p0, p1) -> tuple[float, float, float, float, bool, bool]:
     return u0, v0, u1, v1, steep, flip
 
 
+@steps.step(
+    "dislop_column",
+    takes="a middle column's first-octant slope m (0 <= m <= 1) and dxy (-1/2 < dxy <= 1/2), the "
+    "line's offset from the middle pixel's centre at the column centre",
+    returns="(up, mid, low): the areas of the pixels above, at and below the middle one, by the "
+    "dissertation's formula (Fig 4-2; exact for m <= 0.75)",
+)
+def middle_column(m: float, dxy: float) -> tuple[float, float, float]:
+    """The areas (up, mid, low) of a middle column by the printed DISLOP_L formula.
+
+    >>> [round(v, 4) for v in middle_column(0.08, 0.0)]  # Table 4-8, j = 25
+    [0.0108, 0.9816, 0.0108]
+    """
+    up, mid, low, _, _, _ = columns.line_column(m, dxy)
+    return up, mid, low
+
+
 def _rectangle(u0, v0, u1, v1, slope):
     """The four corners of the 1-wide band around the segment, counter-clockwise."""
     thickness = math.sqrt(1.0 + slope * slope)
@@ -80,7 +98,8 @@ def dislop_line(
     width, height : int
         Raster size in pixels, in 0..2**16.
     trace : None, True or Tracer
-        None runs the compiled kernel; a tracer gets one ``dislop_column`` per
+        None runs the compiled kernel (the reference loop while a step of
+        `scanviz.steps` is replaced); a tracer gets one ``dislop_column`` per
         column (True: a new Recorder, returned with the image).
     exact : bool
         False: the dissertation's middle formula (a fourth pixel's area is
@@ -113,14 +132,14 @@ def dislop_line(
     tracer = as_tracer(trace)
     image = new_raster(width, height, "dislop_line")
     u0, v0, u1, v1, steep, flip = canonical(p0, p1)
-    if tracer is None:
+    if tracer is None and not steps.replaced():  # the kernel has no step table
         _line_kernel(u0, v0, u1, v1, steep, flip, exact, image)
     else:
         _line_reference(u0, v0, u1, v1, steep, flip, exact, image, tracer)
     return finish(image, trace, tracer)
 
 
-def _line_reference(u0, v0, u1, v1, steep, flip, exact, image, tracer: Tracer) -> None:
+def _line_reference(u0, v0, u1, v1, steep, flip, exact, image, tracer: Tracer | None) -> None:
     if u1 == u0:  # zero length (a canonical segment with u1 == u0 has v1 == v0)
         return
     slope = (v1 - v0) / (u1 - u0)
@@ -128,15 +147,16 @@ def _line_reference(u0, v0, u1, v1, steep, flip, exact, image, tracer: Tracer) -
     work = np.empty((4, 16))
     start, end = math.floor(u0 + 0.5), math.floor(u1 + 0.5)  # the end pixels' columns
     columns_in_raster = image.shape[0] if steep else image.shape[1]
+    areas_of = steps.get("dislop_column")
     for column in range(max(start - 1, 0), min(end + 1, columns_in_raster - 1) + 1):
         centre = v0 + (column - u0) * slope  # the centre line at the column centre
         row = math.ceil(centre - 0.5)  # the middle pixel: dxy in (-1/2, 1/2]
         dxy = centre - row
-        up, mid, low, fcv, scv, branch = columns.line_column(slope, dxy)
-        areas = [0.0, low, mid, up, 0.0]  # rows -2..2 from the middle pixel
+        _, _, _, fcv, scv, branch = columns.line_column(slope, dxy)  # the event's critical values
         name = columns.LINE_BRANCHES[branch]
         if column <= start + 1 or column >= end - 1:  # an end column: clip the rectangle
             name = "cap"
+            areas = [0.0] * len(ROWS)
             for k, r in enumerate(ROWS):
                 bottom = row + r - 0.5
                 box = (column - 0.5, bottom, column + 0.5, bottom + 1.0)
@@ -144,8 +164,11 @@ def _line_reference(u0, v0, u1, v1, steep, flip, exact, image, tracer: Tracer) -
         elif exact:  # the exact band: five rows, one of which may be the fourth pixel
             name = "exact"
             areas = [columns.band_row(slope, dxy, r) for r in ROWS]
+        else:  # the dissertation's middle formula, a replaceable step
+            up, mid, low = areas_of(slope, dxy)
+            areas = [0.0, low, mid, up, 0.0]  # rows -2..2 from the middle pixel
         x, y = raster_pixel(column, row, steep, flip)
-        if tracer.wants("dislop_column", y=y):
+        if tracer is not None and tracer.wants("dislop_column", y=y):
             spill = areas[4] if dxy > 0.0 else areas[0]
             tracer.emit(
                 DislopColumn(

@@ -15,7 +15,7 @@ from .core import Exercise
 
 MODULES = (
     "lines", "scan", "triangles", "interpolation", "zbuffer", "viewing", "abuffer", "depth_sort",
-    "bsp", "perimeter", "fast_phong",
+    "bsp", "perimeter", "fast_phong", "antialias",
 )  # fmt: skip
 
 _CATALOG: dict[str, Exercise] = {}
