@@ -29,14 +29,13 @@ import math
 import numpy as np
 from numba import njit
 
+from .. import steps
 from ..conventions import short_repr
 from ..geometry import as_coordinates
 from ..trace.events import PostColumn
 from . import columns, tables
 from ._inputs import as_tracer, finish
 from .line import canonical, raster_pixel
-
-RECORD_FIELDS = 8  # per table column: column, row, i, j, dxy, up, mid, low (frame)
 
 
 def post_antialias(
@@ -118,13 +117,14 @@ def post_antialias(
     for index, (p0, p1) in enumerate(segments):
         u0, v0, u1, v1, steep, flip = canonical(p0, p1)
         lut_flag = int(flags[index]) ^ flip if kind == "edge" else 0  # the flag in the frame
-        record = np.empty((0, RECORD_FIELDS)) if tracer is None else _record(u0, u1, out, steep)
-        count = _segment_kernel(
+        arguments = (
             out, u0, v0, u1, v1, steep, flip, kind == "edge", lut[lut_flag], float(quantum),
-            color, recurrence == "simple", record,
+            color, recurrence == "simple",
         )  # fmt: skip
-        if tracer is not None:
-            _emit(tracer, index, record[:count], steep, flip)
+        if tracer is None and not steps.replaced():  # the kernel has no step table
+            _segment_kernel(*arguments)
+        else:
+            _segment_reference(*arguments, tracer, index)
     return finish(out, trace, tracer)
 
 
@@ -172,17 +172,60 @@ def _check_flags(flags: object, kind: str, count: int) -> np.ndarray:
     return array.astype(np.int64)
 
 
-def _record(u0: float, u1: float, image: np.ndarray, steep: bool) -> np.ndarray:
-    """A record buffer with a row for every column of the segment on the raster."""
-    size = image.shape[0 if steep else 1]
-    first, last = max(math.floor(u0 + 0.5), 0), min(math.floor(u1 + 0.5), size - 1)
-    return np.empty((max(last - first + 1, 0), RECORD_FIELDS))
-
-
-def _emit(tracer, segment: int, record: np.ndarray, steep: bool, flip: bool) -> None:
-    for column, row, i, j, dxy, up, mid, low in record.tolist():
-        x, y = raster_pixel(int(column), int(row), steep, flip)
-        if tracer.wants("post_column", y=y):
+def _segment_reference(
+    image, u0, v0, u1, v1, steep, flip, edge, lut, quantum, color, simple, tracer, segment
+) -> None:
+    """`_segment_kernel`'s walk in Python, emitting ``post_column`` per table column. The
+    indices come from the step ``table_index`` (`scanviz.steps`): at every table column, or,
+    with the simple recurrence, once at X0 (then j steps by i)."""
+    if u1 == u0:
+        return
+    slope = (v1 - v0) / (u1 - u0)
+    indices_of = steps.get("table_index")
+    start, end = math.floor(u0 + 0.5), math.floor(u1 + 0.5)
+    first, last = (start + 1, end - 1) if edge else (start - 1, end + 1)
+    first, last = max(first, 0), min(last, (image.shape[0] if steep else image.shape[1]) - 1)
+    thickness = math.sqrt(1.0 + slope * slope)
+    nx, ny = -0.5 * slope / thickness, 0.5 / thickness
+    xs = np.array([u0 - nx, u1 - nx, u1 + nx, u0 + nx])
+    ys = np.array([v0 - ny, v1 - ny, v1 + ny, v0 + ny])
+    work = np.empty((4, 16))
+    walk = max(start, 0)  # the recurrence starts at X0 = ixs (Fig 5-2), or at the raster's edge
+    centre = v0 + (walk - u0) * slope
+    row = math.ceil(centre - 0.5)
+    dxy = centre - row
+    i, j = indices_of(slope, dxy) if simple else (0, 0)
+    for column in range(first, last + 1):
+        while walk < column:  # one step of the recurrence per column
+            walk += 1
+            if simple:
+                row += 1 if j + i >= 50 else 0
+                j = (j + i) % 50
+                dxy = -0.5 + j / 50.0
+            else:
+                dxy += slope
+                if dxy > 0.5:
+                    row, dxy = row + 1, dxy - 1.0
+        if not edge and (column <= start + 1 or column >= end - 1):  # a cap column: clip exactly
+            middle = math.ceil(v0 + (column - u0) * slope - 0.5)
+            for r in range(-2, 3):
+                bottom = middle + r - 0.5
+                box = (column - 0.5, bottom, column + 0.5, bottom + 1.0)
+                area = columns.clip_area(xs, ys, 4, *box, work)
+                if quantum > 0.0:
+                    area = math.floor(min(max(area, 0.0), 1.0) * quantum + 0.5) / quantum
+                _blend(image, column, middle + r, area, steep, flip, color)
+            continue
+        if not simple:
+            i, j = indices_of(slope, dxy)
+        if not (0 <= i <= 50 and 0 <= j <= 50):
+            raise ValueError(f"step 'table_index' must give indices in 0..50; got {(i, j)!r}")
+        up, mid, low = (float(area) for area in lut[i, j])
+        _blend(image, column, row + 1, up, steep, flip, color)
+        _blend(image, column, row, mid, steep, flip, color)
+        _blend(image, column, row - 1, low, steep, flip, color)
+        x, y = raster_pixel(column, row, steep, flip)
+        if tracer is not None and tracer.wants("post_column", y=y):
             major = "y" if steep else "x"
             tracer.emit(PostColumn(segment, x, y, major, int(i), int(j), dxy, up, mid, low))
 
@@ -201,11 +244,11 @@ def _blend(image, column, row, area, steep, flip, color):  # pragma: no cover - 
 
 @njit(cache=True)
 def _segment_kernel(
-    image, u0, v0, u1, v1, steep, flip, edge, lut, quantum, color, simple, record
+    image, u0, v0, u1, v1, steep, flip, edge, lut, quantum, color, simple
 ):  # pragma: no cover - compiled
-    """Walk one canonical segment; returns how many table columns it wrote to `record`."""
+    """Walk one canonical segment, blending the table's areas over `image`."""
     if u1 == u0:
-        return 0
+        return
     slope = (v1 - v0) / (u1 - u0)
     i = int(slope * 50 + 0.5)
     start, end = math.floor(u0 + 0.5), math.floor(u1 + 0.5)
@@ -221,7 +264,6 @@ def _segment_kernel(
     row = math.ceil(centre - 0.5)
     dxy = centre - row
     j = int((dxy + 0.5) * 50 + 0.5)
-    count = 0
     for column in range(first, last + 1):
         while walk < column:  # one step of the recurrence per column
             walk += 1
@@ -251,12 +293,6 @@ def _segment_kernel(
         _blend(image, column, row + 1, up, steep, flip, color)
         _blend(image, column, row, mid, steep, flip, color)
         _blend(image, column, row - 1, low, steep, flip, color)
-        if record.shape[0] > count:
-            record[count, 0], record[count, 1], record[count, 2] = column, row, i
-            record[count, 3], record[count, 4] = j, dxy
-            record[count, 5], record[count, 6], record[count, 7] = up, mid, low
-            count += 1
-    return count
 
 
 def silhouette_mask(image: object, threshold: float) -> np.ndarray:

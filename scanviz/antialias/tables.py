@@ -30,6 +30,7 @@ from functools import cache
 
 import numpy as np
 
+from .. import steps
 from ..conventions import short_repr
 from . import columns
 from ._inputs import check_point
@@ -100,6 +101,21 @@ def distance_index(dxy: float) -> int:
     if not -0.5 <= dxy <= 0.5:
         raise ValueError(f"'dxy' must be in -1/2..1/2; got {short_repr(dxy)}")
     return int((float(dxy) + 0.5) * DIVISIONS + 0.5)
+
+
+@steps.step(
+    "table_index",
+    takes="a first-octant slope m (|m| <= 1) and a column's distance dxy (-1/2 <= dxy <= 1/2)",
+    returns="(i, j): the indices of the 51 x 51 x 3 tables, i = int(|m| * 50 + 0.5) and "
+    "j = int((dxy + 0.5) * 50 + 0.5)",
+)
+def table_indices(m: float, dxy: float) -> tuple[int, int]:
+    """The table indices (i, j) of a column: `slope_index` and `distance_index`.
+
+    >>> table_indices(0.080, -0.0024), table_indices(0.25, 0.25)
+    ((4, 25), (13, 38))
+    """
+    return slope_index(m), distance_index(dxy)
 
 
 def _fill(rows: int, m_values, dxy_values, formula) -> np.ndarray:

@@ -1,5 +1,5 @@
 """Exercises on area-sampling anti-aliasing (scanviz.antialias; Wang 1989, ch. 4), through
-`dislop_line` traced.
+`dislop_line` and `post_antialias` traced.
 
 ``dislop_column`` is the per-column area formula of DISLOP_L (Fig 4-2, spec
 §3.2): from the first-octant slope m and the offset dxy of the line from the
@@ -13,15 +13,27 @@ ones, whose columns take two and three pixels, slopes past 0.75, where the
 printed formula misses a fourth pixel (it is the reference all the same),
 45° lines with dxy = 1/2 or 0 in every column, and horizontal and vertical
 lines (m = 0).
+
+``table_index`` is the index arithmetic of post-anti-aliasing (§4.8, spec
+§3.8): the slope and distance indices (i, j) of the 51 x 51 x 3 table, found
+in every table column of every segment. `post_antialias` runs with the
+student's step; its ``post_column`` events (the middle pixel, dxy, i, j, the
+areas read) are graded, then the image. Cases are lines and polygon edges on
+a black image, among them slopes and distances on exact halves (m·50 = 12.5:
+the C cast rounds up, Python's round() to even) and Fig 5-1's line.
 """
 
 from __future__ import annotations
 
 import random
 
+import numpy as np
+
 from .. import steps
 from ..antialias.columns import LINE_BRANCHES
 from ..antialias.line import dislop_line, middle_column
+from ..antialias.post import post_antialias
+from ..antialias.tables import table_indices
 from .catalog import register
 from .core import Case, Exercise, Variant, edited_variant
 
@@ -280,5 +292,243 @@ register(
             "dislop_stepper(CASE['p0'], CASE['p1'], CASE['width'], CASE['height'])"
         ),
         banned=("scanviz.antialias", "line_column", "line_column_compiled", "middle_column"),
+    )
+)
+
+
+POST_KINDS = ("post_column",)
+POST_CATEGORIES = ("lines", "ties", "horizontal or 45 degrees", "steep lines", "polygon edges")
+
+
+def _post_with(step: str):
+    def call(fn, inputs, tracer):
+        with steps.using(**{step: fn}):
+            return post_antialias(
+                np.zeros((inputs["height"], inputs["width"])),
+                inputs["segments"],
+                kind=inputs["kind"],
+                flags=inputs["flags"],
+                trace=tracer,
+            )
+
+    return call
+
+
+def _look_up_of_call(index: int, trace: list) -> str:
+    """The indices are found once per table column (the dxy recurrence), in trace order."""
+    looked_up = [e for e in trace if e.kind == "post_column"]
+    if index >= len(looked_up):
+        return f"call {index + 1}"
+    event = looked_up[index]
+    walked = f"column {event.x}" if event.major == "x" else f"row {event.y}"
+    return f"segment {event.segment}, {walked} (middle pixel ({event.x}, {event.y}))"
+
+
+def post_table(trace) -> str:
+    """The table look-ups as text, one line each: segment, where, dxy, i, j, the areas read.
+
+    >>> _, trace = post_antialias(np.zeros((4, 9)), [((0.5, 1.0), (8.5, 3.0))], trace=True)
+    >>> print(post_table(trace).splitlines()[0])
+    segment 0  column 2   pixel ( 2,  1)  dxy  0.0000  i 13  j 25  up 0.0413  mid 0.9506  low 0.0413
+    """
+    lines = []
+    for e in trace:
+        if e.kind != "post_column":
+            continue
+        walked = f"column {e.x:<3}" if e.major == "x" else f"row {e.y:<6}"
+        lines.append(
+            f"segment {e.segment}  {walked} pixel ({e.x:2d}, {e.y:2d})  dxy {e.dxy:7.4f}  "
+            f"i {e.i:2d}  j {e.j:2d}  up {e.up:.4f}  mid {e.mid:.4f}  low {e.low:.4f}"
+        )
+    return "\n".join(lines)
+
+
+def _post_case(label, segments, width, height, kind="line", flags=None, category=""):
+    inputs = {
+        "segments": [[list(p0), list(p1)] for p0, p1 in segments],
+        "kind": kind,
+        "flags": flags,
+        "width": width,
+        "height": height,
+    }
+    return Case(label, inputs, category)
+
+
+POST_PUBLIC = (
+    _post_case(
+        "a line of slope 1/4: m·50 = 12.5 gives i = 13, and dxy = ±1/4 gives the ties j = 13, 38",
+        [((0.5, 1.0), (12.5, 4.0))],
+        13,
+        6,
+    ),
+    _post_case(
+        "Fig 5-1's line, moved by (-98, -148): m = 0.6747, i = 34, j = 42, 26, 10, 44, 27, 11",
+        [((2.8, 2.7), (11.1, 8.3))],
+        13,
+        11,
+    ),
+    _post_case(
+        "an 85° line leaning left (x and y swap, m = 0.0875): i = 4 from 4.875",
+        [((4.55, 0.5), (3.5, 12.5))],
+        7,
+        14,
+    ),
+    _post_case(
+        "a horizontal line and a 45° one, half a pixel above the centres: i = 0 and 50, j = 50",
+        [((0.5, 2.0), (10.5, 2.0)), ((0.5, 4.0), (8.5, 12.0))],
+        12,
+        14,
+    ),
+    _post_case(
+        "a triangle's three edges (kind edge, flags 0, 1, 0): the columns between their ends",
+        [((1.5, 1.5), (13.5, 4.5)), ((13.5, 4.5), (5.5, 12.5)), ((5.5, 12.5), (1.5, 1.5))],
+        15,
+        14,
+        "edge",
+        [0, 1, 0],
+    ),
+)
+
+
+def _post_segment(rng: random.Random, category: str) -> list:
+    """A segment of 5 to 14 pixels along its major axis on the 16² raster, in any octant."""
+    length = rng.randint(5, 14)
+    grid = 4 if category in ("ties", "horizontal or 45 degrees") else 16
+    if category == "ties":  # m·50 = 12.5 or 37.5, and dxy on quarters: j ties at dxy = ±1/4
+        rise = rng.choice((0.25, 0.75)) * length
+    elif category == "horizontal or 45 degrees":
+        rise = rng.choice((0.0, 1.0)) * length
+    else:
+        rise = _sixteenth(rng, 0.0, 1.0) * length
+    x0 = round(rng.uniform(0.0, SIZE - 1 - length) * grid) / grid
+    y0 = round(rng.uniform(0.0, SIZE - 1 - rise) * grid) / grid
+    start, end = [x0, y0], [x0 + length, y0 + rise]
+    if rng.random() < 0.5:
+        start[1], end[1] = end[1], start[1]
+    if rng.random() < 0.5:
+        start, end = end, start
+    if category == "steep lines" or rng.random() < 0.3:
+        start, end = start[::-1], end[::-1]
+    return [start, end]
+
+
+def _table_index_case(rng: random.Random) -> Case:
+    category = rng.choice(POST_CATEGORIES)
+    segments = [_post_segment(rng, category) for _ in range(rng.randint(1, 3))]
+    edge = category == "polygon edges"
+    flags = [rng.randint(0, 1) for _ in segments] if edge else None
+    label = f"{category}: {len(segments)} segment{'s' if len(segments) > 1 else ''}"
+    return _post_case(label, segments, SIZE, SIZE, "edge" if edge else "line", flags, category)
+
+
+INDEX_SOLUTION = """\
+def table_index(m, dxy):
+    i = int(abs(m) * 50 + 0.5)
+    j = int((dxy + 0.5) * 50 + 0.5)
+    return i, j
+"""
+
+
+def _index_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
+    return edited_variant(INDEX_SOLUTION, name, hint, *edits)
+
+
+POST_IDEA = (
+    "**Post-anti-aliasing** (Wang 1989, ch. 4, §4.8) anti-aliases an image that is already "
+    "rendered: every visible line or polygon edge is walked column by column in its "
+    "first-octant frame, and in each column the areas of the three pixels it cuts are read "
+    "from a table instead of computed (DISLOP_L for lines, DISLOP_E for edges) and blended "
+    "over the image. The slope range [0, 1] is divided into 50: m_i = i / 50, each with an "
+    "exact period 50 / gcd(i, 50), so one table of 51 × 51 × 3 areas serves every slope: "
+    "`[i, j, (upper, middle, lower)]` with dxy_j = -1/2 + j / 50 (j = 0 and j = 50 are the "
+    "same configuration, one row apart).\n\n"
+    "The indices are the dissertation's C: i = (int)(|m| * 50 + 0.5), j = (int)((dxy + 0.5) "
+    "* 50 + 0.5), the nearest division, halves rounded up (m = 0.080 gives i = 4 from 4.5, "
+    "m = 0.6747 gives i = 34). Each traced column emits a `post_column` event (the segment, "
+    "the middle pixel, dxy, i, j and the areas read); scanviz: y up, pixel (x, y) is the "
+    "square [x, x+1] × [y, y+1].\n\n"
+    "Your step is the index arithmetic, called once per table column with the segment's "
+    "first-octant slope m (0 <= m <= 1) and the column's dxy (-1/2 < dxy <= 1/2, stepped by m "
+    "from column to column). Lines keep the three columns at each end for the exact caps, "
+    "edges their two end columns for the polygon's other edges: those do not call it."
+)
+
+register(
+    Exercise(
+        id="table_index",
+        number=23,
+        title="The table indices of post-anti-aliasing",
+        stage="anti-aliasing",
+        kind="step",
+        points=2,
+        answer="table_index",
+        idea=POST_IDEA,
+        stub=(
+            "def table_index(m, dxy):\n"
+            '    """m: a first-octant slope (a float, 0 <= m <= 1); dxy: a column\'s distance from\n'
+            "    its middle pixel's centre (a float, -1/2 <= dxy <= 1/2).\n"
+            "    Return (i, j), two ints: the slope and distance indices of the 51 x 51 x 3\n"
+            '    table, each the nearest of the 50 divisions, halves rounded up."""\n'
+            "    raise NotImplementedError\n"
+        ),
+        solution=INDEX_SOLUTION,
+        call=_post_with("table_index"),
+        reference=table_indices,
+        public=POST_PUBLIC,
+        generate=_table_index_case,
+        variants=(
+            _index_variant(
+                "round_half_even",
+                "(int)(x + 0.5) rounds halves up; Python's round() rounds them to even: "
+                "m·50 = 12.5 gives 12, the table's index is 13",
+                ("int(abs(m) * 50 + 0.5)", "round(abs(m) * 50)"),
+                ("int((dxy + 0.5) * 50 + 0.5)", "round((dxy + 0.5) * 50)"),
+            ),
+            _index_variant(
+                "truncated",
+                "(int) truncates: add 1/2 first, so that the index is the nearest division, "
+                "not the one below (m = 0.6747 is 33.7 divisions: i = 34, not 33)",
+                ("int(abs(m) * 50 + 0.5)", "int(abs(m) * 50)"),
+                ("int((dxy + 0.5) * 50 + 0.5)", "int((dxy + 0.5) * 50)"),
+            ),
+            _index_variant(
+                "dxy_not_shifted",
+                "the table's rows run from dxy = -1/2 (j = 0) to dxy = 1/2 (j = 50): shift "
+                "dxy by 1/2 before scaling, j = (int)((dxy + 0.5) * 50 + 0.5)",
+                ("int((dxy + 0.5) * 50 + 0.5)", "int(dxy * 50 + 0.5)"),
+            ),
+            _index_variant(
+                "fifty_one",
+                "the table has 51 rows but 50 divisions: m_i = i / 50 and dxy_j = -1/2 + j / 50, "
+                "so scale by 50, not 51",
+                ("int(abs(m) * 50 + 0.5)", "int(abs(m) * 51 + 0.5)"),
+                ("int((dxy + 0.5) * 50 + 0.5)", "int((dxy + 0.5) * 51 + 0.5)"),
+            ),
+            _index_variant(
+                "swapped",
+                "the first index is the slope's (i), the second the distance's (j): return (i, j)",
+                ("    return i, j\n", "    return j, i\n"),
+            ),
+        ),
+        kinds=POST_KINDS,
+        step="table_index",
+        place=_look_up_of_call,
+        result=lambda image: image[:, :, 0],
+        stepper=(
+            "import numpy as np\n"
+            "from scanviz.antialias.post import post_antialias\n"
+            "from scanviz.exercises.antialias import post_table\n"
+            "image, trace = post_antialias(np.zeros((CASE['height'], CASE['width'])), "
+            "CASE['segments'],\n"
+            "                              kind=CASE['kind'], flags=CASE['flags'], trace=True)\n"
+            "print(post_table(trace))"
+        ),
+        banned=(
+            "scanviz.antialias",
+            "table_indices",
+            "slope_index",
+            "distance_index",
+            "column_indices",
+        ),
     )
 )
