@@ -147,8 +147,10 @@ def mutated_scenes(draw):
                 del parent[path[-1]]
             elif isinstance(parent, dict):
                 parent[draw(st.sampled_from(["extra", "difuse", "obj", "size"]))] = draw(HOSTILE)
-            else:
+            elif isinstance(parent, list):
                 parent.append(draw(HOSTILE))
+            else:  # an earlier mutation replaced the container by a scalar
+                continue
         except (KeyError, IndexError, TypeError):
             continue  # an earlier mutation removed the path
     return data
