@@ -1,10 +1,11 @@
 """The conformance suite: the table of categories, the runner and its one-line output.
 
-Each category is a small function returning an `Outcome`; they live in `raster_checks`, `input_checks`, `coverage_checks`,
-`pipeline_checks`, `visibility_checks` and `surfaces_checks`; this module lists them, runs them and prints one line
-each. Every category builds its cases from a seeded generator, runs the public
-entry points and compares them with an exact oracle (`scanviz.conformance.exact`)
-or with an invariant that must hold exactly. ``docs/conformance.md`` lists
+Each category is a small function returning an `Outcome`; they live in `raster_checks`,
+`input_checks`, `coverage_checks`, `pipeline_checks`, `visibility_checks`, `surfaces_checks`
+and `antialias_checks`; this module lists them, runs them and prints one line each.
+Every category builds its cases from a seeded generator, runs the public entry points
+and compares them with an exact oracle (`scanviz.conformance.exact`) or with an
+invariant that must hold exactly. ``docs/conformance.md`` lists
 what each category checks and why.
 """
 
@@ -15,6 +16,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .antialias_checks import dislop_vs_exact_area
 from .cases import Outcome
 from .classify import one_line
 from .coverage_checks import exact_coverage, masks_vs_supersampling
@@ -51,6 +53,7 @@ CATEGORIES: dict[str, Callable[[np.random.Generator], Outcome]] = {
     "built-in scenes": builtin_scenes,
     "visibility vs z-buffer": visibility_vs_zbuffer,
     "FPA vs z-buffer": fpa_vs_zbuffer,
+    "DISLOP vs exact area": dislop_vs_exact_area,
 }
 
 
