@@ -21,8 +21,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
-from ..abuffer.area import area_coverage
+from ..abuffer.area import MAX_WORK, _coverage_kernel, area_coverage
+from ..conventions import COORD_LIMIT
 from ..geometry import Polygon
 from ..raster import scan_convert
 from ..trace.events import DislopColumn
@@ -33,7 +35,8 @@ from .line import canonical, raster_pixel
 SIDE_STEP = 1e-7  # how far beside a piece's midpoint its two sides are tested for inside
 # Per pixel: the image and hit counts (8 + 8), the marks (1 + 1), the scan-converted mask (1).
 PIXEL_BYTES = 19
-PLUS, MINUS, MIXED = 1, 2, 4  # which pieces touch a pixel: winding 0|+1, 0|-1, anything else
+PLUS, MINUS, MIXED = 1, 2, 4
+CENTRE_MARGIN = 1e-6  # a fill sample this close to a crossing is decided by `scan_convert`  # which pieces touch a pixel: winding 0|+1, 0|-1, anything else
 
 
 def dislop_edge(polygon: object, width: int, height: int, *, trace: object = None):
@@ -72,7 +75,23 @@ def dislop_edge(polygon: object, width: int, height: int, *, trace: object = Non
     tracer = as_tracer(trace)
     image = new_raster(width, height, "dislop_edge", PIXEL_BYTES)
     height, width = image.shape
-    inside = scan_convert(polygon, width, height, sample="center", subpixel_bits=None).mask
+    if tracer is None:
+        starts = polygon.vertices
+        ends = np.concatenate([np.roll(c, -1, axis=0) for c in polygon.contours])
+        unsure, deferred = _edge_kernel(starts, ends, polygon.offsets, image)
+        if unsure:  # a fill pixel whose centre is within rounding of an edge: decide it exactly
+            inside = scan_convert(polygon, width, height, sample="center", subpixel_bits=None).mask
+            for y, x in unsure:
+                image[y, x] = inside[y, x]
+        for y, x in deferred:  # pixels the kernel's exact area cannot mirror bit for bit
+            image[y, x] = _exact_area(polygon, int(x), int(y))
+    else:
+        inside = scan_convert(polygon, width, height, sample="center", subpixel_bits=None).mask
+        _edge_reference(polygon, inside, image, tracer)
+    return finish(image, trace, tracer)
+
+
+def _edge_reference(polygon: Polygon, inside: np.ndarray, image: np.ndarray, tracer) -> None:
     hits = np.zeros(image.shape, dtype=np.int64)  # boundary pieces cutting each pixel
     needs_exact = np.zeros(image.shape, dtype=bool)
     touched = np.zeros(image.shape, dtype=np.int8)  # PLUS | MINUS | MIXED of all pieces
@@ -87,7 +106,6 @@ def dislop_edge(polygon: object, width: int, height: int, *, trace: object = Non
     for y, x in zip(*np.nonzero(needs_exact | (hits > 1)), strict=True):
         simple = touched[y, x] in (PLUS, MINUS)
         image[y, x] = (_clipped_area if simple else _exact_area)(polygon, int(x), int(y))
-    return finish(image, trace, tracer)
 
 
 def _pieces(starts: np.ndarray, ends: np.ndarray):
@@ -200,3 +218,314 @@ def _exact_area(polygon: Polygon, x: int, y: int) -> float:
     """Area in pixel (x, y) by `area_coverage` of a one-pixel raster there (any winding)."""
     shifted = Polygon([contour - (x, y) for contour in polygon.contours])  # exact: integer shift
     return float(area_coverage(shifted, 1, 1, subpixel_bits=None)[0, 0])
+
+
+# ---------------------------------------------------------------- the compiled kernel
+# The same float arithmetic as the reference above, in the same order (traced == untraced).
+
+_canonical_compiled = njit(cache=True)(canonical)
+
+
+@njit(cache=True)
+def _hypot(x, y):  # pragma: no cover - compiled
+    """`math.hypot(x, y)` as CPython computes it (vector_norm), which numba's differs from."""
+    x, y = abs(x), abs(y)
+    largest = max(x, y)
+    if largest == 0.0:
+        return largest
+    if math.frexp(largest)[1] < -1023:  # deep subnormal: bring both up into the normal range
+        return 2.0**-1022 * _hypot(x / 2.0**-1022, y / 2.0**-1022)
+    scale = math.ldexp(1.0, -math.frexp(largest)[1])
+    total, frac1, frac2 = 1.0, 0.0, 0.0
+    for value in (x * scale, y * scale):
+        square, square_lo = _exact_product(value, value)
+        total, total_lo = _fast_sum(total, square)
+        frac1 += square_lo
+        frac2 += total_lo
+    h = math.sqrt(total - 1.0 + (frac1 + frac2))
+    square, square_lo = _exact_product(-h, h)
+    total, total_lo = _fast_sum(total, square)
+    frac1 += square_lo
+    frac2 += total_lo
+    h += (total - 1.0 + (frac1 + frac2)) / (2.0 * h)  # differential correction
+    return h / scale
+
+
+@njit(cache=True)
+def _exact_product(a, b):  # pragma: no cover - compiled
+    """(a b rounded, its exact error): Dekker's product, |a|, |b| < 2**996."""
+    product = a * b
+    split = 134217729.0  # 2**27 + 1
+    a_hi = split * a - (split * a - a)
+    b_hi = split * b - (split * b - b)
+    a_lo, b_lo = a - a_hi, b - b_hi
+    return product, ((a_hi * b_hi - product) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
+
+
+@njit(cache=True)
+def _fast_sum(a, b):  # pragma: no cover - compiled
+    """(a + b rounded, its exact error) for |a| >= |b|."""
+    total = a + b
+    return total, b - (total - a)
+
+
+@njit(cache=True)
+def _beside_compiled(ax, ay, bx, by):  # pragma: no cover - compiled `_beside`
+    dx, dy = bx - ax, by - ay
+    length = _hypot(dx, dy)
+    nx, ny = -dy / length, dx / length
+    mx, my = 0.5 * (ax + bx), 0.5 * (ay + by)
+    return mx + SIDE_STEP * nx, my + SIDE_STEP * ny, mx - SIDE_STEP * nx, my - SIDE_STEP * ny
+
+
+@njit(cache=True)
+def _winding_compiled(px, py, starts, ends):  # pragma: no cover - compiled `_winding`
+    winding = 0
+    for e in range(len(starts)):
+        ax, ay, bx, by = starts[e, 0], starts[e, 1], ends[e, 0], ends[e, 1]
+        if (ay <= py < by) or (by <= py < ay):
+            cross = (bx - ax) * (py - ay) - (px - ax) * (by - ay)
+            if ay <= py < by and cross > 0:
+                winding += 1
+            elif by <= py < ay and cross < 0:
+                winding -= 1
+    return winding
+
+
+@njit(cache=True)
+def _flag_compiled(ax, ay, bx, by, left_inside):  # pragma: no cover - compiled `_flag`
+    u0, v0, u1, v1, steep, flip = _canonical_compiled((ax, ay), (bx, by))
+    lx, ly, rx, ry = _beside_compiled(ax, ay, bx, by)
+    px, py = (lx - 0.5, ly - 0.5) if left_inside else (rx - 0.5, ry - 0.5)
+    pu, pv = (py, px) if steep else (px, py)
+    pv = -pv if flip else pv
+    return 1 if pv < v0 + (pu - u0) * (v1 - v0) / (u1 - u0) else 0
+
+
+@njit(cache=True)
+def _mark(touched, needs_exact, x, y, kind, boundary):  # pragma: no cover - compiled
+    """Mark raster pixel (x, y), if on the raster, as touched by a piece of this kind."""
+    if 0 <= x < touched.shape[1] and 0 <= y < touched.shape[0]:
+        touched[y, x] |= kind
+        needs_exact[y, x] |= boundary
+
+
+@njit(cache=True)
+def _walk_piece_compiled(ax, ay, bx, by, flag, kind, image, hits, needs_exact, touched):
+    # pragma: no cover - compiled `_walk_piece`; flag -1: not a boundary piece
+    u0, v0, u1, v1, steep, flip = _canonical_compiled((ax, ay), (bx, by))
+    slope = (v1 - v0) / (u1 - u0)
+    first, last = math.ceil(u0 + 0.5), math.floor(u1 - 0.5)
+    for column in range(max(first, 0), min(last, image.shape[0 if steep else 1] - 1) + 1):
+        centre = v0 + (column - u0) * slope
+        row = math.ceil(centre - 0.5)
+        dxy = centre - row
+        up, mid, low, cv, _, branch = columns.edge_column_compiled(
+            slope, dxy, 1 if flag == 1 else 0
+        )
+        neighbour = row + 1 if dxy > 0.0 else row - 1
+        cut = 2 if branch == 1 and cv > 0.0 else 1
+        for k in range(cut):
+            r, area = (row, mid) if k == 0 else (neighbour, up + low)
+            r = -r if flip else r
+            x, y = (r, column) if steep else (column, r)
+            if 0 <= x < image.shape[1] and 0 <= y < image.shape[0]:
+                touched[y, x] |= kind
+                if flag >= 0:
+                    image[y, x], hits[y, x] = area, hits[y, x] + 1
+    end_columns = (math.floor(u0 + 0.5), math.floor(u1 + 0.5))
+    for k in range(2):
+        column = end_columns[k]
+        if (k == 1 and column == end_columns[0]) or first <= column <= last:
+            continue
+        left, right = max(u0, column - 0.5), min(u1, column + 0.5)
+        low_v, high_v = v0 + (left - u0) * slope, v0 + (right - u0) * slope
+        for row in range(math.ceil(low_v - 0.5), math.floor(high_v + 0.5) + 1):
+            r = -row if flip else row
+            x, y = (r, column) if steep else (column, r)
+            _mark(touched, needs_exact, x, y, kind, flag >= 0)
+    for x, y in ((ax, ay), (bx, by)):
+        for py in range(max(math.ceil(y) - 1, 0), min(math.floor(y), image.shape[0] - 1) + 1):
+            for px in range(max(math.ceil(x) - 1, 0), min(math.floor(x), image.shape[1] - 1) + 1):
+                _mark(touched, needs_exact, px, py, kind, flag >= 0)
+
+
+@njit(cache=True)
+def _piece_compiled(ax, ay, bx, by, starts, ends, image, hits, needs_exact, touched):
+    # pragma: no cover - compiled: one piece of the reference's loop
+    lx, ly, rx, ry = _beside_compiled(ax, ay, bx, by)
+    left, right = _winding_compiled(lx, ly, starts, ends), _winding_compiled(rx, ry, starts, ends)
+    low, high = min(left, right), max(left, right)
+    kind = PLUS if (low, high) == (0, 1) else MINUS if (low, high) == (-1, 0) else MIXED
+    flag = _flag_compiled(ax, ay, bx, by, left != 0) if (left != 0) != (right != 0) else -1
+    _walk_piece_compiled(ax, ay, bx, by, flag, kind, image, hits, needs_exact, touched)
+
+
+@njit(cache=True)
+def _split_edges(starts, ends, image, hits, needs_exact, touched):  # pragma: no cover - compiled
+    """`_pieces` and the per-piece work: every edge split where other edges cross it."""
+    d = ends - starts
+    cuts = np.empty(len(starts) + 2)
+    for k in range(len(starts)):
+        ax, ay, bx, by = starts[k, 0], starts[k, 1], ends[k, 0], ends[k, 1]
+        if ax == bx and ay == by:
+            continue
+        count = 1
+        cuts[0] = 0.0
+        for j in range(len(starts)):
+            denominator = d[k, 0] * d[j, 1] - d[k, 1] * d[j, 0]
+            if denominator == 0.0:
+                continue
+            ox, oy = starts[j, 0] - ax, starts[j, 1] - ay
+            t = (ox * d[j, 1] - oy * d[j, 0]) / denominator
+            u = (ox * d[k, 1] - oy * d[k, 0]) / denominator
+            if 0.0 < t < 1.0 and 0.0 <= u <= 1.0:
+                cuts[count] = t
+                count += 1
+        cuts[count] = 1.0
+        ordered = np.unique(cuts[: count + 1])
+        px, py = ax, ay
+        for i in range(1, len(ordered)):
+            last = i == len(ordered) - 1
+            qx = bx if last else ax + ordered[i] * d[k, 0]
+            qy = by if last else ay + ordered[i] * d[k, 1]
+            if px != qx or py != qy:
+                _piece_compiled(px, py, qx, qy, starts, ends, image, hits, needs_exact, touched)
+            px, py = qx, qy
+
+
+@njit(cache=True)
+def _clipped_area_compiled(xs, ys, offsets, x, y, work):  # pragma: no cover - `_clipped_area`
+    area = 0.0
+    for c in range(len(offsets) - 1):
+        contour_xs, contour_ys = xs[offsets[c] : offsets[c + 1]], ys[offsets[c] : offsets[c + 1]]
+        n = offsets[c + 1] - offsets[c]
+        area += columns.clip_area_compiled(
+            contour_xs, contour_ys, n, float(x), float(y), x + 1.0, y + 1.0, work
+        )
+    return min(abs(area), 1.0)
+
+
+@njit(cache=True)
+def _distinct_shifted(contour, x, y):  # pragma: no cover - compiled
+    """How many distinct vertices the shifted contour has, counting up to 3."""
+    first_x, first_y = contour[0, 0] - x, contour[0, 1] - y
+    second = -1
+    for i in range(1, len(contour)):
+        px, py = contour[i, 0] - x, contour[i, 1] - y
+        if px == first_x and py == first_y:
+            continue
+        if second < 0:
+            second = i
+        elif px != contour[second, 0] - x or py != contour[second, 1] - y:
+            return 3
+    return 1 if second < 0 else 2
+
+
+@njit(cache=True)
+def _exact_area_compiled(starts, ends, offsets, x, y):  # pragma: no cover - `_exact_area`
+    """`_exact_area`, or -1.0 where it would not give the same bits (the caller defers).
+
+    `area_coverage` of the shifted polygon sees only the edges crossing its one
+    row, sorted stably by their lower y: the same kernel on just those gives
+    the same area. Deferred: a shift that `Polygon` would refuse (past 2**20,
+    or merging a contour to under 3 distinct vertices) and a pixel past the
+    kernel's work limit (`area_coverage` raises).
+    """
+    for c in range(len(offsets) - 1):
+        if _distinct_shifted(starts[offsets[c] : offsets[c + 1]], x, y) < 3:
+            return -1.0
+    count = 0
+    ax, ay = np.empty(len(starts)), np.empty(len(starts))
+    bx, by = np.empty(len(starts)), np.empty(len(starts))
+    winding = np.empty(len(starts), np.int64)
+    for e in range(len(starts)):
+        x0, y0, x1, y1 = starts[e, 0] - x, starts[e, 1] - y, ends[e, 0] - x, ends[e, 1] - y
+        if max(abs(x0), abs(y0)) > COORD_LIMIT:
+            return -1.0
+        if y0 == y1 or max(y0, y1) <= 0.0 or min(y0, y1) >= 1.0:
+            continue  # horizontal edges bound no strip; the others never enter the row
+        up = y1 > y0
+        ax[count], ay[count] = (x0, y0) if up else (x1, y1)
+        bx[count], by[count] = (x1, y1) if up else (x0, y0)
+        winding[count] = 1 if up else -1
+        count += 1
+    order = np.argsort(ay[:count], kind="mergesort")
+    rows, work = _coverage_kernel(
+        ax[:count][order], ay[:count][order], bx[:count][order], by[:count][order],
+        winding[:count][order], 1, 1, False, 0, 1, MAX_WORK,
+    )  # fmt: skip
+    if work > MAX_WORK:
+        return -1.0
+    return min(max(rows[0, 0], 0.0), 1.0)
+
+
+@njit(cache=True)
+def _centre_samples(starts, ends, shape):  # pragma: no cover - compiled
+    """Nonzero winding at every pixel centre, and where that float decision may be wrong.
+
+    `scan_convert` (centre samples, unsnapped) decides exactly; a crossing x
+    computed in float64 is within 1e-8 of the exact one for coordinates up to
+    2**20, so a centre farther than `CENTRE_MARGIN` from every crossing of its
+    row gets the same answer. Rows and their active edges are compared exactly.
+    """
+    inside = np.zeros(shape, np.bool_)
+    unsure = np.zeros(shape, np.bool_)
+    crossings, directions = np.empty(len(starts)), np.empty(len(starts), np.int64)
+    for y in range(shape[0]):
+        sample = y + 0.5
+        count = 0
+        for e in range(len(starts)):
+            (x0, y0), (x1, y1) = (starts[e, 0], starts[e, 1]), (ends[e, 0], ends[e, 1])
+            if y1 < y0:
+                x0, y0, x1, y1 = x1, y1, x0, y0
+            if y0 <= sample < y1:
+                crossings[count] = x0 + (sample - y0) * (x1 - x0) / (y1 - y0)
+                directions[count] = 1 if ends[e, 1] > starts[e, 1] else -1
+                count += 1
+        order = np.argsort(crossings[:count])
+        winding, next_crossing = 0, 0
+        for x in range(shape[1]):
+            centre = x + 0.5
+            while next_crossing < count and crossings[order[next_crossing]] < centre:
+                winding += directions[order[next_crossing]]
+                next_crossing += 1
+            inside[y, x] = winding != 0
+        for k in range(count):
+            near = crossings[k] - 0.5
+            for x in range(max(math.ceil(near - CENTRE_MARGIN), 0), shape[1]):
+                if x > near + CENTRE_MARGIN:
+                    break
+                unsure[y, x] = True
+    return inside, unsure
+
+
+@njit(cache=True)
+def _edge_kernel(starts, ends, offsets, image):  # pragma: no cover - compiled
+    """The reference's loop untraced; returns the (y, x) fill pixels it is unsure of, and
+    the pixels left to `_exact_area`."""
+    hits = np.zeros(image.shape, np.int64)
+    needs_exact = np.zeros(image.shape, np.bool_)
+    touched = np.zeros(image.shape, np.int8)
+    _split_edges(starts, ends, image, hits, needs_exact, touched)
+    inside, unsure_inside = _centre_samples(starts, ends, image.shape)
+    xs, ys = starts[:, 0].copy(), starts[:, 1].copy()
+    work = np.empty((4, 2 * int(np.max(offsets[1:] - offsets[:-1])) + 8))
+    unsure, deferred = [(0, 0)][:0], [(0, 0)][:0]
+    for y in range(image.shape[0]):
+        for x in range(image.shape[1]):
+            exact = needs_exact[y, x] or hits[y, x] > 1
+            if hits[y, x] == 0:
+                image[y, x] = 1.0 if inside[y, x] else 0.0
+                if unsure_inside[y, x] and not exact:
+                    unsure.append((y, x))
+            if not exact:
+                continue
+            if touched[y, x] == PLUS or touched[y, x] == MINUS:
+                image[y, x] = _clipped_area_compiled(xs, ys, offsets, x, y, work)
+            else:
+                area = _exact_area_compiled(starts, ends, offsets, x, y)
+                if area < 0.0:
+                    deferred.append((y, x))
+                image[y, x] = area
+    return unsure, deferred

@@ -167,3 +167,50 @@ def test_traced_equals_untraced_and_events():
     assert sorted(top) == list(range(101, 109))  # the columns the edge spans fully
     assert top[103].branch == "one_pixel" and top[103].mid == pytest.approx(0.521685, abs=1e-5)
     assert top[101].branch == "two_pixel" and top[101].low == pytest.approx(0.979808, abs=1e-5)
+
+
+def _traced_and_compiled(polygon, size):
+    traced, _ = dislop_edge(polygon, size, size, trace=True)
+    return traced, dislop_edge(polygon, size, size)
+
+
+coordinate = st.floats(-6, 22, allow_nan=False)
+
+
+@given(st.lists(st.tuples(coordinate, coordinate), min_size=3, max_size=12), st.booleans())
+@settings(max_examples=settings.default.max_examples // 4)
+def test_compiled_equals_traced(points, on_grid):
+    """Random polygons, self-intersecting and partly off the 16x16 raster: the same bits."""
+    points = np.array(points)
+    if on_grid:  # shared vertices, collinear and axis-parallel edges
+        points = np.rint(points * 4) / 4
+    if len(np.unique(points, axis=0)) < 3:
+        return
+    traced, compiled = _traced_and_compiled(points, 16)
+    assert np.array_equal(traced, compiled)
+
+
+@given(st.data(), st.booleans())
+@settings(max_examples=settings.default.max_examples // 10)
+def test_compiled_equals_traced_with_holes(data, holes):
+    traced, compiled = _traced_and_compiled(_polygon(data, holes), 21)
+    assert np.array_equal(traced, compiled)
+
+
+@pytest.mark.parametrize(
+    "polygon",
+    [
+        [(0, 0), (5, 5), (10, 10)],  # collinear: zero area
+        [(1.5, 1.5), (6.5, 1.5), (6.5, 1.5), (6.5, 1.5), (3, 7.25)],  # repeated vertices
+        [(1, 1), (7, 1), (4, 1), (4, 6), (4, 3)],  # zero-area spikes, edges folding back
+        [(2, 2), (8, 8), (2, 8), (8, 2), (2, 2), (5, 5)],  # bow tie through a repeated vertex
+        [(-9, -9), (-5, -9), (-5, -5)],  # off the raster
+        [[(1, 1), (9, 1), (9, 9), (1, 9)], [(1, 1), (9, 1), (9, 9), (1, 9)]],  # winding 2
+        [[(1, 1), (9, 1), (9, 9), (1, 9)], [(1, 9), (9, 9), (9, 1), (1, 1)]],  # cancels: 0
+    ],
+)
+def test_degenerate_polygons_compiled_equals_traced(polygon):
+    traced, compiled = _traced_and_compiled(polygon, 10)
+    assert np.array_equal(traced, compiled)
+    exact = area_coverage(polygon, 10, 10, subpixel_bits=None)
+    assert np.abs(compiled - exact).max() < 1e-12
