@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 # Branches of the DISLOP_L middle formula (Fig 4-2), as the trace names them.
@@ -152,7 +153,21 @@ def clip_area(xs, ys, n, x0: float, y0: float, x1: float, y1: float, work) -> fl
     return 0.5 * area
 
 
+def band_corners(u0: float, v0: float, u1: float, v1: float, slope: float):
+    """(xs, ys): the corners of the 1-wide band around the segment, counter-clockwise.
+
+    >>> [v.tolist() for v in band_corners(0.0, 0.0, 2.0, 0.0, 0.0)]
+    [[0.0, 2.0, 2.0, 0.0], [-0.5, -0.5, 0.5, 0.5]]
+    """
+    thickness = math.sqrt(1.0 + slope * slope)
+    nx, ny = -0.5 * slope / thickness, 0.5 / thickness  # half the unit normal, pointing up
+    xs = np.array([u0 - nx, u1 - nx, u1 + nx, u0 + nx])
+    ys = np.array([v0 - ny, v1 - ny, v1 + ny, v0 + ny])
+    return xs, ys
+
+
 line_column_compiled = njit(cache=True)(line_column)
+band_corners_compiled = njit(cache=True)(band_corners)
 ramp_mean_compiled = njit(cache=True)(ramp_mean)
 edge_column_compiled = njit(cache=True)(edge_column)
 clip_area_compiled = njit(cache=True)(clip_area)

@@ -71,15 +71,6 @@ def middle_column(m: float, dxy: float) -> tuple[float, float, float]:
     return up, mid, low
 
 
-def _rectangle(u0, v0, u1, v1, slope):
-    """The four corners of the 1-wide band around the segment, counter-clockwise."""
-    thickness = math.sqrt(1.0 + slope * slope)
-    nx, ny = -0.5 * slope / thickness, 0.5 / thickness  # half the unit normal, pointing up
-    xs = np.array([u0 - nx, u1 - nx, u1 + nx, u0 + nx])
-    ys = np.array([v0 - ny, v1 - ny, v1 + ny, v0 + ny])
-    return xs, ys
-
-
 def dislop_line(
     p0: object,
     p1: object,
@@ -143,7 +134,7 @@ def _line_reference(u0, v0, u1, v1, steep, flip, exact, image, tracer: Tracer | 
     if u1 == u0:  # zero length (a canonical segment with u1 == u0 has v1 == v0)
         return
     slope = (v1 - v0) / (u1 - u0)
-    xs, ys = _rectangle(u0, v0, u1, v1, slope)
+    xs, ys = columns.band_corners(u0, v0, u1, v1, slope)
     work = np.empty((4, 16))
     start, end = math.floor(u0 + 0.5), math.floor(u1 + 0.5)  # the end pixels' columns
     columns_in_raster = image.shape[0] if steep else image.shape[1]
@@ -203,10 +194,7 @@ def _line_kernel(u0, v0, u1, v1, steep, flip, exact, image):  # pragma: no cover
     if u1 == u0:
         return
     slope = (v1 - v0) / (u1 - u0)
-    thickness = math.sqrt(1.0 + slope * slope)
-    nx, ny = -0.5 * slope / thickness, 0.5 / thickness
-    xs = np.array([u0 - nx, u1 - nx, u1 + nx, u0 + nx])
-    ys = np.array([v0 - ny, v1 - ny, v1 + ny, v0 + ny])
+    xs, ys = columns.band_corners_compiled(u0, v0, u1, v1, slope)
     work = np.empty((4, 16))
     start, end = math.floor(u0 + 0.5), math.floor(u1 + 0.5)
     columns_in_raster = image.shape[0] if steep else image.shape[1]

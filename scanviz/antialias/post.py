@@ -185,10 +185,7 @@ def _segment_reference(
     start, end = math.floor(u0 + 0.5), math.floor(u1 + 0.5)
     first, last = (start + 1, end - 1) if edge else (start - 1, end + 1)
     first, last = max(first, 0), min(last, (image.shape[0] if steep else image.shape[1]) - 1)
-    thickness = math.sqrt(1.0 + slope * slope)
-    nx, ny = -0.5 * slope / thickness, 0.5 / thickness
-    xs = np.array([u0 - nx, u1 - nx, u1 + nx, u0 + nx])
-    ys = np.array([v0 - ny, v1 - ny, v1 + ny, v0 + ny])
+    xs, ys = columns.band_corners(u0, v0, u1, v1, slope)
     work = np.empty((4, 16))
     walk = max(start, 0)  # the recurrence starts at X0 = ixs (Fig 5-2), or at the raster's edge
     centre = v0 + (walk - u0) * slope
@@ -254,10 +251,7 @@ def _segment_kernel(
     start, end = math.floor(u0 + 0.5), math.floor(u1 + 0.5)
     first, last = (start + 1, end - 1) if edge else (start - 1, end + 1)
     first, last = max(first, 0), min(last, (image.shape[0] if steep else image.shape[1]) - 1)
-    thickness = math.sqrt(1.0 + slope * slope)
-    nx, ny = -0.5 * slope / thickness, 0.5 / thickness
-    xs = np.array([u0 - nx, u1 - nx, u1 + nx, u0 + nx])
-    ys = np.array([v0 - ny, v1 - ny, v1 + ny, v0 + ny])
+    xs, ys = columns.band_corners_compiled(u0, v0, u1, v1, slope)
     work = np.empty((4, 16))
     walk = max(start, 0)  # the recurrence starts at X0 = ixs (Fig 5-2), or at the raster's edge
     centre = v0 + (walk - u0) * slope
