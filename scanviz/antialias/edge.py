@@ -124,7 +124,7 @@ def _pieces(starts: np.ndarray, ends: np.ndarray):
         points = [a + c * d[k] for c in cuts[1:-1]]
         corners = [a.tolist(), *(p.tolist() for p in points), b.tolist()]
         for p, q in zip(corners, corners[1:], strict=False):
-            if p != q:
+            if _walkable(p[0], p[1], q[0], q[1]):
                 yield p, q
 
 
@@ -152,6 +152,16 @@ def _flag(a, b, left_inside: bool) -> int:
     pu, pv = (point[1], point[0]) if steep else (point[0], point[1])
     pv = -pv if flip else pv
     return 1 if pv < v0 + (pu - u0) * (v1 - v0) / (u1 - u0) else 0
+
+
+@njit(cache=True)
+def _walkable(ax, ay, bx, by) -> bool:
+    """Whether piece a -> b is still a segment in the walk's centred coordinates (ours - 1/2).
+
+    A piece shorter than the rounding of its coordinates there, e.g. (0, 1e-104) -> (0, 0),
+    has no slope and no area; the pieces beside it mark its pixels.
+    """
+    return ax - 0.5 != bx - 0.5 or ay - 0.5 != by - 0.5
 
 
 def _walk_piece(a, b, flag, kind, image, hits, needs_exact, touched, tracer) -> None:
@@ -389,7 +399,7 @@ def _split_edges(starts, ends, image, hits, needs_exact, touched):  # pragma: no
             last = i == len(ordered) - 1
             qx = bx if last else ax + ordered[i] * d[k, 0]
             qy = by if last else ay + ordered[i] * d[k, 1]
-            if px != qx or py != qy:
+            if _walkable(px, py, qx, qy):
                 _piece_compiled(px, py, qx, qy, starts, ends, image, hits, needs_exact, touched)
             px, py = qx, qy
 

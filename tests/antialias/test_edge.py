@@ -207,6 +207,8 @@ def test_compiled_equals_traced_with_holes(data, holes):
         [(-9, -9), (-5, -9), (-5, -5)],  # off the raster
         [[(1, 1), (9, 1), (9, 9), (1, 9)], [(1, 1), (9, 1), (9, 9), (1, 9)]],  # winding 2
         [[(1, 1), (9, 1), (9, 9), (1, 9)], [(1, 9), (9, 9), (9, 1), (1, 1)]],  # cancels: 0
+        [(0, 0), (0, 1), (0, 2.5063623372388222e-104)],  # an edge that vanishes in x - 1/2
+        [(3, 1e-300), (8, 0), (8, 6), (3, 0)],  # a side shorter than the rounding at y - 1/2
     ],
 )
 def test_degenerate_polygons_compiled_equals_traced(polygon):
