@@ -15,8 +15,15 @@ _SAFE_LOW, _SAFE_HIGH = 1e-280, 1e280  # squared lengths between these lost noth
 
 
 def _squared_lengths(vectors: np.ndarray) -> np.ndarray:
+    """x*x + y*y + ... summed in component order, so a compiled loop gets the same bits.
+
+    (``einsum`` pairs the terms differently with the array's size and layout.)
+    """
     with np.errstate(over="ignore", under="ignore"):
-        return np.einsum("...i,...i->...", vectors, vectors)
+        total = vectors[..., 0] * vectors[..., 0]
+        for k in range(1, vectors.shape[-1]):
+            total = total + vectors[..., k] * vectors[..., k]
+        return total
 
 
 def _risky(squares: np.ndarray) -> np.ndarray:

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import weakref
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -10,7 +11,8 @@ from ..conventions import COORD_LIMIT
 from ..scene.faces import FaceCorners, face_corners
 from ..scene.model import Scene
 from ..shading import face_normals, material_array, vertex_normals
-from ..transform import classify, clip_from_eye, clip_polygon, cull_faces, eye_from_world
+from ..transform import clip_from_eye, clip_polygon, cull_faces, eye_from_world
+from ..transform.clip import ACCEPT, CLIP, REJECT, _outcodes, classify_codes
 from ..vectors import unit_vectors
 from ..visibility import ScreenPolygons
 from ..visibility.zbuffer import VALUE_LIMIT
@@ -18,6 +20,7 @@ from .result import RenderStats, Stage
 from .shade import _lit
 
 TRANSPARENCY = 7  # column of `transparency` in a material row (scanviz.shading.MATERIAL_FIELDS)
+CULLED = 3  # a face's verdict after ACCEPT, CLIP, REJECT (`scanviz.transform.clip.VERDICTS`)
 # Per-vertex attributes each shading model interpolates.
 ATTRIBUTES = {
     "flat": 0,
@@ -61,9 +64,33 @@ class _ObjectInWorld:
     palette: np.ndarray  # (1 + materials, 9): row 0 is the object's material
     face_material: np.ndarray  # (F,) palette row: polygon level
     corner_material: np.ndarray  # (sum sizes,) palette row: vertex level, inherited
+    kept: dict = field(default_factory=dict)  # per-corner tables made once, on first use
+
+    def corner_surface(self) -> np.ndarray:
+        """(sum sizes, 15): each corner's normal, world position and material (Phong, Gooch)."""
+        if "surface" not in self.kept:
+            surface = np.hstack(
+                [self.corner_normals, self.world[self.corners], self.palette[self.corner_material]]
+            )
+            surface.setflags(write=False)
+            self.kept["surface"] = surface
+        return self.kept["surface"]
+
+
+# Objects are immutable (frozen, read-only arrays): their world-space faces, normals and
+# palette are made once and kept while the object lives, as a GPU keeps a mesh's buffers.
+_IN_WORLD: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
 def _object_in_world(obj) -> _ObjectInWorld:
+    """`obj` in world space (`_world_space`), computed on its first render and kept with it."""
+    found = _IN_WORLD.get(obj)
+    if found is None:
+        found = _IN_WORLD[obj] = _world_space(obj)
+    return found
+
+
+def _world_space(obj) -> _ObjectInWorld:
     mesh, matrix = obj.mesh, obj.world_from_model
     world = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
     # A mirroring transform turns counter-clockwise faces clockwise: reverse them back.
@@ -89,7 +116,7 @@ def _object_in_world(obj) -> _ObjectInWorld:
         own = mesh.vertex_materials[corners]
         corner_material = np.where(own >= 0, own + 1, corner_material)
     palette = material_array((obj.material, *mesh.materials))
-    return _ObjectInWorld(
+    found = _ObjectInWorld(
         world,
         faces,
         flat_faces,
@@ -101,6 +128,10 @@ def _object_in_world(obj) -> _ObjectInWorld:
         face_material,
         corner_material,
     )
+    for array in (*(getattr(found, f.name) for f in fields(found)), *flat_faces):
+        if isinstance(array, np.ndarray):
+            array.setflags(write=False)  # shared by every render of the object
+    return found
 
 
 def prepare(
@@ -137,16 +168,18 @@ def prepare(
             culled, _ = cull_faces(scene.camera, world, o.flat_faces, trace=tracer)
             keep &= ~culled
             stats.culled += int(culled.sum())
-        verdict = classify(clip, o.flat_faces).astype(object)
-        verdict[~keep] = "culled"
-        stats.off_screen += int((verdict == "reject").sum())
-        stats.accepted += int((verdict == "accept").sum())
+        verdict = classify_codes(_outcodes(clip), corners, o.flat_faces.starts)
+        verdict[~keep] = CULLED
+        accepted = verdict == ACCEPT
+        everything = bool(accepted.all())  # the common case: no array needs picking from
+        stats.off_screen += int((verdict == REJECT).sum())
+        stats.accepted += int(accepted.sum())
         # Attributes per corner, by shading model.
         if shading == "gouraud":
             values = _lit(scene, world[corners], o.corner_normals, o.palette[o.corner_material])
             stats.shaded_vertices += len(values)
         elif shading in ("phong", "gooch", "fast_phong"):
-            values = np.hstack([o.corner_normals, world[corners], o.palette[o.corner_material]])
+            values = o.corner_surface()
         else:
             values = np.zeros((len(corners), 0))
         flat = np.zeros((len(faces), 3 if shading == "flat" else 0))
@@ -154,16 +187,18 @@ def prepare(
             starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
             centroids = np.add.reduceat(world[corners], starts) / sizes[:, None]
             flat = _lit(scene, centroids, o.face_normals, o.palette[o.face_material])
-        corner_keep = np.repeat(verdict == "accept", sizes)
+
+        corner_keep = slice(None) if everything else np.repeat(accepted, sizes)
+        face_keep = slice(None) if everything else accepted
         rows["xyzw"].append(clip[corners][corner_keep])
         rows["values"].append(values[corner_keep])
-        rows["sizes"].append(sizes[verdict == "accept"])
-        rows["flat"].append(flat[verdict == "accept"])
+        rows["sizes"].append(sizes[face_keep])
+        rows["flat"].append(flat[face_keep])
         opacity = 1.0 - o.palette[o.face_material, TRANSPARENCY]
-        rows["object"].append(np.full(int((verdict == "accept").sum()), index))
-        rows["opacity"].append(opacity[verdict == "accept"])
+        rows["object"].append(np.full(int(accepted.sum()), index))
+        rows["opacity"].append(opacity[face_keep])
         starts = np.concatenate([[0], np.cumsum(sizes)])
-        for f in np.flatnonzero(verdict == "clip"):  # drawn after the accepted faces of this object
+        for f in np.flatnonzero(verdict == CLIP):  # drawn after the accepted faces of this object
             points, attributes = clip_polygon(
                 clip[faces[f]], values[starts[f] : starts[f + 1]], trace=tracer, polygon=int(f)
             )
@@ -177,18 +212,19 @@ def prepare(
                 rows["opacity"].append(opacity[f : f + 1])
             else:
                 stats.off_screen += 1
-    xyzw = np.concatenate(rows["xyzw"]) if rows["xyzw"] else np.zeros((0, 4))
+    xyzw = _joined(rows["xyzw"], (0, 4))
     sizes = (
         np.concatenate(rows["sizes"]).astype(np.int64) if rows["sizes"] else np.zeros(0, np.int64)
     )
     k = ATTRIBUTES[shading]
-    values = np.concatenate(rows["values"]) if rows["values"] else np.zeros((0, k))
+    values = _joined(rows["values"], (0, k))
     flat_colors = (
         np.concatenate(rows["flat"]) if rows["flat"] else np.zeros((0, 3 if k == 0 else 0))
     )
     polygon_object = (
         np.concatenate(rows["object"]).astype(np.int64) if rows["object"] else np.zeros(0, np.int64)
     )
+
     vertex_object = np.repeat(polygon_object, sizes)
     screen = _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading)
     stats.polygons_drawn = len(sizes)
@@ -212,6 +248,13 @@ def prepare(
     return _Prepared(screen, flat_colors, polygon_object, polygon_opacity, stats, stages)
 
 
+def _joined(parts: list, empty: tuple) -> np.ndarray:
+    """The parts one after another (one part as it is: the screen polygons copy it)."""
+    if len(parts) == 1:
+        return parts[0]
+    return np.concatenate(parts) if parts else np.zeros(empty)
+
+
 def _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading) -> ScreenPolygons:
     """Clipped polygons divided by w into display coordinates, checked against the z-buffer's bounds.
 
@@ -232,17 +275,14 @@ def _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading)
         ),
     ]
     for what, array, limit, rule in checks:
-        _check_vertices(what, ~(np.abs(array) <= limit).all(axis=1), vertex_object, rule)
-    far = ~((inv_w >= 1 / VALUE_LIMIT) & (inv_w <= VALUE_LIMIT))
-    _check_vertices(
-        "positions (1/w)", far, vertex_object, f"in [{1 / VALUE_LIMIT:g}, {VALUE_LIMIT:g}]"
-    )
-    return ScreenPolygons(
-        xy=xy,
-        z=z,
-        inv_w=inv_w,
-        values=values,
-        offsets=np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64),
+        if array.size and not np.abs(array).max() <= limit:  # one pass; NaN fails it too
+            _check_vertices(what, ~(np.abs(array) <= limit).all(axis=1), vertex_object, rule)
+    if len(inv_w) and not (inv_w.min() >= 1 / VALUE_LIMIT and inv_w.max() <= VALUE_LIMIT):
+        far = ~((inv_w >= 1 / VALUE_LIMIT) & (inv_w <= VALUE_LIMIT))
+        rule = f"in [{1 / VALUE_LIMIT:g}, {VALUE_LIMIT:g}]"
+        _check_vertices("positions (1/w)", far, vertex_object, rule)
+    return ScreenPolygons.checked(
+        xy, z, inv_w, values, np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
     )
 
 

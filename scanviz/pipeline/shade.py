@@ -5,11 +5,15 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
+from numba import njit
 
 from ..scene.model import Material, Scene
 from ..vectors import unit_vectors
 
-MATERIAL = slice(6, 15)  # the material columns of a pixel's attributes (normal, position, material)
+MATERIAL_FIRST, MATERIAL_STOP = 6, 15
+MATERIAL = slice(
+    MATERIAL_FIRST, MATERIAL_STOP
+)  # the material columns of a pixel's attributes (normal, position, material)
 
 
 def _viewer(camera):
@@ -62,15 +66,15 @@ def _image_function(
     material in place of the kept one. Row by row arithmetic (`illuminate`),
     so the colors do not depend on which other pixels are shaded.
     """
-    visible = polygon >= 0
-    attributes = values[visible]
+    visible = np.flatnonzero(polygon.ravel() >= 0)
+    attributes = values.reshape(-1, values.shape[-1])[visible]
     if materials:
-        owner = polygon_object[polygon[visible]]
+        owner = polygon_object[polygon.ravel()[visible]]
         for index, material in materials.items():
             attributes[owner == index, MATERIAL] = _material_row(material)
     image = np.empty((*polygon.shape, 3))
     image[...] = scene.background
-    image[visible] = _shade_pixels(scene, shading, attributes)
+    image.reshape(-1, 3)[visible] = _shade_pixels(scene, shading, attributes)
     return image, len(attributes)
 
 
@@ -89,13 +93,25 @@ def _exact_materials(polygons, result) -> None:
     """
     if not polygons.count:
         return
-    starts = polygons.offsets[:-1]
-    rows = polygons.values[:, MATERIAL]
-    uniform = (np.minimum.reduceat(rows, starts) == np.maximum.reduceat(rows, starts)).all(axis=1)
-    ys, xs = np.nonzero(result.polygon >= 0)
-    ids = result.polygon[ys, xs]
-    one = uniform[ids]
-    result.values[ys[one], xs[one], MATERIAL] = rows[starts[ids[one]]]
+    _put_exact_materials(polygons.values, polygons.offsets, result.polygon, result.values)
+
+
+@njit(cache=True)
+def _put_exact_materials(vertex_values, offsets, polygon, values):  # pragma: no cover - compiled
+    """`_exact_materials` in one pass: which polygons have one material, then their pixels."""
+    first, stop = MATERIAL_FIRST, MATERIAL_STOP
+    uniform = np.ones(offsets.shape[0] - 1, np.bool_)
+    for p in range(offsets.shape[0] - 1):
+        for v in range(offsets[p] + 1, offsets[p + 1]):
+            for k in range(first, stop):
+                if vertex_values[v, k] != vertex_values[offsets[p], k]:
+                    uniform[p] = False
+    for y in range(polygon.shape[0]):
+        for x in range(polygon.shape[1]):
+            p = polygon[y, x]
+            if p >= 0 and uniform[p]:
+                for k in range(first, stop):
+                    values[y, x, k] = vertex_values[offsets[p], k]
 
 
 def _headlight(camera):

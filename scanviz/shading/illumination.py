@@ -333,8 +333,34 @@ def illuminate(
     positions = _rows("positions", positions, 3)
     normals = _rows("normals", normals, 3, len(positions))
     materials = _materials(materials, len(positions))
-    view = _to_viewer(positions, eye, view_dir)
-    return _shade(positions, normals, materials, view, _lights(lights), _ambient(ambient_light))
+    _to_viewer(positions[:0], eye, view_dir)  # checks eye / view_dir
+    return _shade_compiled(
+        positions, normals, materials, eye, view_dir, _lights(lights), _ambient(ambient_light)
+    )
+
+
+def _shade_compiled(positions, normals, materials, eye, view_dir, lights, ambient_light):
+    """`_shade` without steps, by the compiled twin (`scanviz.shading.kernels`): the same bits."""
+    from .kernels import DIRECTIONAL, POINT, shade_rows
+
+    if eye is not None:
+        eye, toward_viewer = _vector("eye", eye), np.full(3, np.nan)
+    else:
+        eye, toward_viewer = np.zeros(3), _unit(_vector("view_dir", view_dir)[None])[0][0]
+    kinds = np.array(
+        [POINT if light.kind == "point" else DIRECTIONAL for light in lights], np.int64
+    )
+    vectors = np.array(
+        [
+            light.position if light.kind == "point" else _unit(-np.asarray([light.direction]))[0][0]
+            for light in lights
+        ],
+        np.float64,
+    ).reshape(-1, 3)
+    colors = np.array([light.color for light in lights], np.float64).reshape(-1, 3)
+    return shade_rows(
+        positions, normals, materials, eye, toward_viewer, kinds, vectors, colors, ambient_light
+    )
 
 
 def _floats(row: np.ndarray) -> tuple[float, ...]:

@@ -95,9 +95,26 @@ def classify(clip_points: object, faces: object) -> np.ndarray:
     indices, starts = flatten_faces(faces, len(codes))
     if not len(starts):
         return np.empty(0, dtype="<U6")
+    return np.array(VERDICTS)[classify_codes(codes, indices, starts)]
+
+
+VERDICTS = ("accept", "clip", "reject")  # `classify_codes` gives their indices
+ACCEPT, CLIP, REJECT = range(3)
+
+
+def classify_codes(codes: np.ndarray, indices: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """(F,) int8 index into `VERDICTS` of each face (corners `indices`, face f from starts[f]).
+
+    `classify` without the strings, for the pipeline: `codes` are the
+    vertices' `outcodes`.
+    """
+    if not len(starts):
+        return np.zeros(0, np.int8)
     all_outside = np.bitwise_and.reduceat(codes[indices], starts)
     any_outside = np.bitwise_or.reduceat(codes[indices], starts)
-    return np.where(all_outside != 0, "reject", np.where(any_outside == 0, "accept", "clip"))
+    verdict = np.where(any_outside == 0, ACCEPT, CLIP).astype(np.int8)
+    verdict[all_outside != 0] = REJECT
+    return verdict
 
 
 @steps.step(

@@ -16,8 +16,9 @@ edge's column in the edge table; AET entries carry that column in `edge_of`.
 
 from __future__ import annotations
 
+import numba
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from ..raster import interpolate as formulas
 from ..raster.kernels import (
@@ -28,12 +29,15 @@ from ..raster.kernels import (
     ROW_START,
     UPPER,
     WINDING,
+    X0,
+    X1,
     Y0,
     Y1,
     Q,
     R,
     activate,
     advance,
+    ceil_div,
     edge_table,
     move,
 )
@@ -57,6 +61,9 @@ STAT_FIELDS = 7
 DEPTH, OVER, UNDER, TARGET = range(4)
 NO_CUTS = np.zeros((0, 11))
 WHOLE = 2**62  # rows -WHOLE..WHOLE: a whole polygon, no row left out
+TABLE_FIELDS = 9  # rows of an edge table (`scanviz.raster.kernels.edge_table`)
+SORTED_IN_PLACE = 64  # polygons up to this many edges sort their edge table by insertion
+BAND_ROWS = 8  # sample rows per band of the parallel z-buffer (its unit of work)
 
 
 @njit(cache=True, inline="always")
@@ -207,6 +214,40 @@ def start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx):
         span_value[k] = span_start(edge_value[left, k], dvdx, x_left, start)
 
 
+@njit(cache=True, inline="always")
+def edge_table_into(units, offsets, scale, height, table):
+    """`edge_table` of one polygon written into `table` (9, >= its edges): the edge count.
+
+    The same columns in the same order (sorted by first row, ties in vertex
+    order) without allocating: small polygons insert each edge after the
+    ones starting at or below its row; large ones take `edge_table`'s sort.
+    """
+    first, stop = offsets[0], offsets[1]
+    if stop - first > SORTED_IN_PLACE:
+        built, _, _ = edge_table(units, offsets, scale, height)
+        table[:, : built.shape[1]] = built
+        return built.shape[1]
+    count = 0
+    for i in range(first, stop):
+        j = i + 1 if i + 1 < stop else first
+        lower, upper = (i, j) if units[i, 1] <= units[j, 1] else (j, i)
+        row_start = max(ceil_div(units[lower, 1], scale), 0)
+        row_end = ceil_div(units[upper, 1], scale)
+        if row_start < min(row_end, height):
+            k = count
+            while k > 0 and table[ROW_START, k - 1] > row_start:
+                for field in range(TABLE_FIELDS):
+                    table[field, k] = table[field, k - 1]
+                k -= 1
+            table[WINDING, k] = 1 if units[j, 1] < units[i, 1] else -1
+            table[ROW_START, k], table[ROW_END, k] = row_start, row_end
+            table[X0, k], table[Y0, k] = units[lower, 0], units[lower, 1]
+            table[X1, k], table[Y1, k] = units[upper, 0], units[upper, 1]
+            table[LOWER, k], table[UPPER, k] = lower, upper
+            count += 1
+    return count
+
+
 @njit(cache=True)
 def draw_polygon(
     polygon, units, offsets, scale, plane, channels, buffers, depth, ids, values, stats, mode, cuts,
@@ -215,16 +256,16 @@ def draw_polygon(
     """Scan polygon `polygon` (rows offsets[0]:offsets[1] of `units`) into the buffers.
 
     `plane` is (x_first, y_first, z_first, dzdx, dzdy); `buffers` the scratch
-    arrays (aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx);
+    arrays (aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx,
+    the edge table);
     `mode`, `cuts` and `target` choose the per-sample test (`writes`);
     only rows rows[0] <= y < rows[1] are drawn (a piece's rows: the others
     are walked, so that every value is stepped as the z-buffer steps it).
     """
     height, width = depth.shape
     x_first, y_first, z_first, dzdx, dzdy = plane
-    aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx = buffers
-    table, _, _ = edge_table(units, offsets, scale, height)
-    count = table.shape[1]
+    aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx, table = buffers
+    count = edge_table_into(units, offsets, scale, height, table)
     n_active = entering = 0
     z_row, z_carry, previous_row = 0.0, 0.0, -2  # no row yet
     y = table[ROW_START, 0] if count else height
@@ -260,7 +301,6 @@ def draw_polygon(
         y += 1
 
 
-@njit(cache=True)
 def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, height, value_count):
     """Draw polygons p = 0, 1, ... (rows offsets[p]:offsets[p+1]) through a z-buffer.
 
@@ -271,16 +311,141 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     Returns (depth, ids, values, stats): (H, W) float64, +inf where empty;
     (H, W) int64, -1 where empty; (H, W, value_count) float64; the (7,)
     int64 counts ROWS, SPANS, FRAGMENTS, PASSED, FAILED, DRAWN, SKIPPED.
+
+    The raster is cut into bands of `BAND_ROWS` sample rows, and the bands
+    are shared among the threads. A band draws, in drawing order, every
+    polygon with a row in it, on its own rows only: each polygon's edges and
+    depth are walked from its first row, as `draw_polygon` walks them, so
+    every sample gets the bits the one-thread pass gives, and each pixel
+    sees its polygons in the same order. The result does not depend on the
+    number of threads (`numba.set_num_threads`).
     """
-    order = np.arange(offsets.shape[0] - 1)
-    no_cuts = np.zeros(order.shape[0] + 1, np.int64)
-    target = np.zeros((1, 1), np.int64)
-    whole = np.empty((order.shape[0], 2), np.int64)
-    whole[:, 0], whole[:, 1] = -WHOLE, WHOLE
-    return paint_pieces(
-        units, positions, z, channels, offsets, scale, width, height, value_count,
-        order, no_cuts, NO_CUTS, whole, DEPTH, target,
+    # np.zeros here, not in numba: the pages of a large buffer are zeroed by the system as
+    # they are first written (calloc), so the values of pixels never drawn cost nothing.
+    values = np.zeros((height, width, value_count))
+    planes, first_row, stop_row, skipped = _polygon_rows(
+        units, positions, z, offsets, scale, width, height
+    )
+    band_start, listed = _bands(first_row, stop_row, height)
+    largest = int(np.diff(offsets).max()) if len(offsets) > 1 else 0
+    threads = numba.get_num_threads()
+    depth = np.empty((height, width))
+    ids = np.empty((height, width), np.int64)
+    thread_stats = np.zeros((threads, STAT_FIELDS), np.int64)
+    drew = np.zeros(len(offsets) - 1, np.bool_)
+    _draw_bands(
+        units, offsets, scale, planes, channels, band_start, listed, largest, depth, ids,
+        values, thread_stats, drew,
     )  # fmt: skip
+    stats = thread_stats.sum(axis=0)
+    stats[DRAWN], stats[SKIPPED] = drew.sum(), skipped.sum()
+    return depth, ids, values, stats
+
+
+@njit(cache=True, parallel=True)
+def _polygon_rows(units, positions, z, offsets, scale, width, height):
+    """Per polygon: its plane, the rows first_row <= y < stop_row it scans, and whether it is skipped."""
+    count = offsets.shape[0] - 1
+    planes = np.zeros((count, 5))
+    first_row = np.zeros(count, np.int64)
+    stop_row = np.zeros(count, np.int64)
+    skipped = np.ones(count, np.bool_)
+    for p in prange(count):
+        first, stop = offsets[p], offsets[p + 1]
+        _, _, c, dzdx, dzdy, z_first = depth_plane(
+            positions[first:stop, 0], positions[first:stop, 1], z[first:stop]
+        )
+        xs, ys = units[first:stop, 0], units[first:stop, 1]
+        y_min, y_max = ys.min(), ys.max()
+        if c != 0.0 and reaches_raster(xs.min(), xs.max(), y_min, y_max, scale, width, height):
+            planes[p, 0], planes[p, 1], planes[p, 2] = (
+                positions[first, 0],
+                positions[first, 1],
+                z_first,
+            )
+            planes[p, 3], planes[p, 4] = dzdx, dzdy
+            skipped[p] = False
+            first_row[p] = max(ceil_div(y_min, scale), 0)
+            # The row above the last is scanned too: its edges are retired there (ROWS counts it).
+            stop_row[p] = min(ceil_div(y_max, scale) + 1, height)
+    return planes, first_row, stop_row, skipped
+
+
+@njit(cache=True)
+def _bands(first_row, stop_row, height):
+    """(band_start, listed): band b draws polygons listed[band_start[b]:band_start[b + 1]], in order."""
+    bands = (height + BAND_ROWS - 1) // BAND_ROWS
+    band_start = np.zeros(bands + 1, np.int64)
+    for p in range(first_row.shape[0]):
+        if stop_row[p] > first_row[p]:
+            for b in range(first_row[p] // BAND_ROWS, (stop_row[p] - 1) // BAND_ROWS + 1):
+                band_start[b + 1] += 1
+    for b in range(bands):
+        band_start[b + 1] += band_start[b]
+    listed = np.empty(band_start[bands], np.int64)
+    filled = band_start[:bands].copy()
+    for p in range(first_row.shape[0]):
+        if stop_row[p] > first_row[p]:
+            for b in range(first_row[p] // BAND_ROWS, (stop_row[p] - 1) // BAND_ROWS + 1):
+                listed[filled[b]] = p
+                filled[b] += 1
+    return band_start, listed
+
+
+@njit(cache=True, parallel=True)
+def _draw_bands(
+    units, offsets, scale, planes, channels, band_start, listed, largest, depth, ids, values,
+    thread_stats, drew,
+):  # fmt: skip
+    """Thread t draws bands t, t + threads, ... (interleaved, so the work is balanced)."""
+    threads = thread_stats.shape[0]
+    bands = band_start.shape[0] - 1
+    for t in prange(threads):
+        buffers = scratch(largest, channels.shape[1])
+        for b in range(t, bands, threads):
+            _draw_band(
+                b, units, offsets, scale, planes, channels, band_start, listed, buffers, depth,
+                ids, values, thread_stats[t], drew,
+            )  # fmt: skip
+
+
+@njit(cache=True)
+def _draw_band(
+    b, units, offsets, scale, planes, channels, band_start, listed, buffers, depth, ids, values,
+    stats, drew,
+):  # fmt: skip
+    """Band b: clear its rows, then draw its polygons in order on those rows only."""
+    height = depth.shape[0]
+    low, high = b * BAND_ROWS, min((b + 1) * BAND_ROWS, height)
+    depth[low:high] = np.inf
+    ids[low:high] = -1
+    target = np.zeros((1, 1), np.int64)
+    no_cuts = np.zeros((0, 11))
+    for k in range(band_start[b], band_start[b + 1]):
+        p = listed[k]
+        fragments = stats[FRAGMENTS]
+        plane = (planes[p, 0], planes[p, 1], planes[p, 2], planes[p, 3], planes[p, 4])
+        draw_polygon(
+            p, units, offsets[p : p + 2], scale, plane, channels, buffers, depth, ids, values,
+            stats, DEPTH, no_cuts, target, (low, high),
+        )  # fmt: skip
+        if stats[FRAGMENTS] > fragments:
+            drew[p] = True
+
+
+@njit(cache=True)
+def scratch(largest, channel_count):
+    """`draw_polygon`'s scratch arrays for polygons of up to `largest` vertices."""
+    return (
+        np.empty((8, largest + 1), np.int64),  # the AET, plus a spare column for sorting
+        np.empty((2, largest + 1)),  # float crossings: unused with exact ones
+        np.empty(largest + 1, np.int64),
+        np.empty((largest, channel_count)),
+        np.empty((largest, channel_count)),
+        np.empty(channel_count),
+        np.empty(channel_count),
+        np.empty((TABLE_FIELDS, largest), np.int64),
+    )
 
 
 @njit(cache=True)
@@ -304,16 +469,7 @@ def paint_pieces(
     largest = 0
     for p in range(offsets.shape[0] - 1):
         largest = max(largest, offsets[p + 1] - offsets[p])
-    channel_count = channels.shape[1]
-    buffers = (
-        np.empty((8, largest + 1), np.int64),  # the AET, plus a spare column for sorting
-        np.empty((2, largest + 1)),  # float crossings: unused with exact ones
-        np.empty(largest + 1, np.int64),
-        np.empty((largest, channel_count)),
-        np.empty((largest, channel_count)),
-        np.empty(channel_count),
-        np.empty(channel_count),
-    )
+    buffers = scratch(largest, channels.shape[1])
     for i in range(piece_polygon.shape[0]):
         p = piece_polygon[i]
         first, stop = offsets[p], offsets[p + 1]

@@ -144,6 +144,24 @@ class ScreenPolygons:
             array.setflags(write=False)
             object.__setattr__(self, name, array)
 
+    @classmethod
+    def checked(cls, xy, z, inv_w, values, offsets) -> ScreenPolygons:
+        """Screen polygons from arrays their maker has already checked against every rule above.
+
+        For `scanviz.pipeline.prepare`, which checks each field where it comes
+        from (to name the object and the field in an error): the arrays are
+        taken as float64 / int64 copies, made read-only, not checked again.
+        """
+        polygons = object.__new__(cls)
+        for name, array, dtype in (
+            ("xy", xy, np.float64), ("z", z, np.float64), ("inv_w", inv_w, np.float64),
+            ("values", values, np.float64), ("offsets", offsets, np.int64),
+        ):  # fmt: skip
+            array = np.array(array, dtype=dtype, order="C")
+            array.setflags(write=False)
+            object.__setattr__(polygons, name, array)
+        return polygons
+
     @property
     def count(self) -> int:
         """The number of polygons, P."""
