@@ -63,7 +63,7 @@ NO_CUTS = np.zeros((0, 11))
 WHOLE = 2**62  # rows -WHOLE..WHOLE: a whole polygon, no row left out
 TABLE_FIELDS = 9  # rows of an edge table (`scanviz.raster.kernels.edge_table`)
 SORTED_IN_PLACE = 64  # polygons up to this many edges sort their edge table by insertion
-BAND_ROWS = 8  # sample rows per band of the parallel z-buffer (its unit of work)
+BAND_ROWS = 16  # sample rows per band of the parallel z-buffer (its unit of work)
 
 
 @njit(cache=True, inline="always")

@@ -372,6 +372,8 @@ def zbuffer(
     channels = vertex_channels(polygons.values, polygons.inv_w, bool(perspective))
     if tracer is None and units.dtype == np.int64 and not steps.replaced():
         scale = 2 ** (bits + 1)
+        if polygons.value_count == 0:  # nothing to divide by 1/w: leave it out
+            channels = channels[:, :0]
         depth, ids, values, counts = kernels.zbuffer_polygons(
             units, units / scale, polygons.z, channels, polygons.offsets, scale,
             width, height, polygons.value_count,
