@@ -248,7 +248,7 @@ def edge_table_into(units, offsets, scale, height, table):
     return count
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def draw_polygon(
     polygon, units, offsets, scale, plane, channels, buffers, depth, ids, values, stats, mode, cuts,
     target, rows,
@@ -294,7 +294,8 @@ def draw_polygon(
             winding += aet[WINDING, i]
             start, end = max(aet[CEIL, i], 0), min(aet[CEIL, i + 1], width)
             if winding != 0 and start < end:
-                start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx)
+                if span_value.shape[0]:  # no channels (flat shading): no crossing is needed
+                    start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx)
                 z = z_row + dzdx * start
                 draw_span(polygon, y, start, end, z, dzdx, span_value, span_dvdx, depth, ids, values, stats, mode, cuts, target)  # fmt: skip
                 stats[SPANS] += 1
