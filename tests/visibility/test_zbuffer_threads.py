@@ -58,7 +58,8 @@ def test_banded_equals_reference_with_any_thread_count(polygons, perspective, bi
 
 def test_a_polygon_across_every_band_and_beyond_the_raster():
     """One quad from below the raster to above it: every band walks it from row 0."""
-    quad = [[(-5.0, -9.5, 0.2), (30.0, -9.0, 0.4), (28.0, 70.25, 0.9), (-4.0, 66.0, 0.1)]]
+    top = HEIGHT + 20.0
+    quad = [[(-5.0, -9.5, 0.2), (30.0, -9.0, 0.4), (28.0, top + 0.25, 0.9), (-4.0, top, 0.1)]]
     polygons = ScreenPolygons.from_polygons(quad, [[[0.0], [1.0], [2.0], [3.0]]])
     reference = zbuffer(polygons, WIDTH, HEIGHT, trace=True)
     compiled = zbuffer(polygons, WIDTH, HEIGHT)
