@@ -18,6 +18,8 @@ from hypothesis import strategies as st
 
 from scanviz import render
 from scanviz.scene.model import Camera, Light, Material, Mesh, Scene, SceneObject
+from scanviz.shading import kernels as s_kernels
+from scanviz.visibility import kernels as z_kernels
 
 BASE = settings.default.max_examples
 THREADS = sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)})
@@ -58,7 +60,8 @@ def soups(draw):
 @given(scene=soups(), shading=st.sampled_from(["flat", "gouraud", "phong"]))
 def test_compiled_render_is_the_traced_one_with_any_thread_count(scene, shading):
     traced = render(scene, 21, 37, shading=shading, trace=True)
-    before = numba.get_num_threads()
+    before, least = numba.get_num_threads(), (z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS)
+    z_kernels.PARALLEL_WORK = s_kernels.PARALLEL_POINTS = 0  # threads however small the scene
     try:
         for threads in THREADS:
             numba.set_num_threads(threads)
@@ -72,3 +75,4 @@ def test_compiled_render_is_the_traced_one_with_any_thread_count(scene, shading)
             )
     finally:
         numba.set_num_threads(before)
+        z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS = least

@@ -12,10 +12,11 @@ from ..scene.faces import FaceCorners, face_corners
 from ..scene.model import Scene
 from ..shading import face_normals, material_array, vertex_normals
 from ..transform import clip_from_eye, clip_polygon, cull_faces, eye_from_world
-from ..transform.clip import ACCEPT, CLIP, REJECT, _outcodes, classify_codes
+from ..transform.clip import ACCEPT, CLIP, REJECT
 from ..vectors import unit_vectors
 from ..visibility import ScreenPolygons
 from ..visibility.zbuffer import VALUE_LIMIT
+from .prepare_kernels import clip_coordinates, face_verdicts, screen_vertices
 from .result import RenderStats, Stage
 from .shade import _lit
 
@@ -147,7 +148,7 @@ def prepare(
     """Cull, transform and clip every object; return the screen polygons the z-buffer draws."""
     clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
     stats = RenderStats(objects=len(scene.objects))
-    rows = {"xyzw": [], "values": [], "sizes": [], "flat": [], "object": [], "opacity": []}
+    rows = {"screen": [], "values": [], "sizes": [], "flat": [], "object": [], "opacity": []}
     cull_ran = False
     for index, obj in enumerate(scene.objects):
         o = _object_in_world(obj)
@@ -157,9 +158,8 @@ def prepare(
             from ..transform import transform_vertices
 
             transform_vertices(scene.camera, world, width, height, trace=tracer, object=index)
-        clip = np.hstack([world, np.ones((len(world), 1))]) @ clip_from_world.T
-        unfit = ~np.isfinite(clip).all(axis=1)
-        _check_vertices("positions (clip space)", unfit, np.full(len(clip), index), "finite")
+        clip, codes, finite = clip_coordinates(world, clip_from_world)
+        _check_vertices("positions (clip space)", ~finite, np.full(len(clip), index), "finite")
         keep = np.ones(len(faces), bool)
         # Back faces of a transparent object show through it where the visibility can show them.
         see_through = transparent_visible and not obj.material.opaque
@@ -168,7 +168,7 @@ def prepare(
             culled, _ = cull_faces(scene.camera, world, o.flat_faces, trace=tracer)
             keep &= ~culled
             stats.culled += int(culled.sum())
-        verdict = classify_codes(_outcodes(clip), corners, o.flat_faces.starts)
+        verdict = face_verdicts(codes, corners, o.flat_faces.starts)
         verdict[~keep] = CULLED
         accepted = verdict == ACCEPT
         everything = bool(accepted.all())  # the common case: no array needs picking from
@@ -190,7 +190,7 @@ def prepare(
 
         corner_keep = slice(None) if everything else np.repeat(accepted, sizes)
         face_keep = slice(None) if everything else accepted
-        rows["xyzw"].append(clip[corners][corner_keep])
+        rows["screen"].append(screen_vertices(clip, corners[corner_keep], width, height))
         rows["values"].append(values[corner_keep])
         rows["sizes"].append(sizes[face_keep])
         rows["flat"].append(flat[face_keep])
@@ -204,7 +204,7 @@ def prepare(
             )
             stats.clipped += 1
             if len(points) >= 3:
-                rows["xyzw"].append(points)
+                rows["screen"].append(_divided(points, width, height))
                 rows["values"].append(attributes)
                 rows["sizes"].append(np.array([len(points)]))
                 rows["flat"].append(flat[f : f + 1])
@@ -212,7 +212,9 @@ def prepare(
                 rows["opacity"].append(opacity[f : f + 1])
             else:
                 stats.off_screen += 1
-    xyzw = _joined(rows["xyzw"], (0, 4))
+    xy = _joined([part[0] for part in rows["screen"]], (0, 2))
+    z = _joined([part[1] for part in rows["screen"]], (0,))
+    inv_w = _joined([part[2] for part in rows["screen"]], (0,))
     sizes = (
         np.concatenate(rows["sizes"]).astype(np.int64) if rows["sizes"] else np.zeros(0, np.int64)
     )
@@ -226,7 +228,7 @@ def prepare(
     )
 
     vertex_object = np.repeat(polygon_object, sizes)
-    screen = _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading)
+    screen = _checked_screen(xy, z, inv_w, values, sizes, vertex_object, shading)
     stats.polygons_drawn = len(sizes)
     stages = [
         Stage(
@@ -262,10 +264,20 @@ def _screen_polygons(xyzw, values, sizes, vertex_object, width, height, shading)
     should one ever be out, the error names the object and the field it came
     from, not an internal array.
     """
+    xy, z, inv_w = _divided(xyzw, width, height)
+    return _checked_screen(xy, z, inv_w, values, sizes, vertex_object, shading)
+
+
+def _divided(xyzw, width, height):
+    """(xy, z, inv_w) of clip points divided by w, as `prepare_kernels.screen_vertices` divides."""
     w = xyzw[:, 3]
     with np.errstate(all="ignore"):
         xy = np.column_stack([(xyzw[:, 0] / w + 1) / 2 * width, (xyzw[:, 1] / w + 1) / 2 * height])
-        z, inv_w = xyzw[:, 2] / w, 1 / w
+        return xy, xyzw[:, 2] / w, 1 / w
+
+
+def _checked_screen(xy, z, inv_w, values, sizes, vertex_object, shading) -> ScreenPolygons:
+    """The screen polygons once every vertex is checked against the z-buffer's bounds."""
     checks = [
         ("positions (display x, y)", xy, COORD_LIMIT, f"within +-{COORD_LIMIT} pixels"),
         ("positions (depth z)", z[:, None], VALUE_LIMIT, f"within +-{VALUE_LIMIT:g}"),

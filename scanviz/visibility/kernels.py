@@ -64,6 +64,7 @@ WHOLE = 2**62  # rows -WHOLE..WHOLE: a whole polygon, no row left out
 TABLE_FIELDS = 9  # rows of an edge table (`scanviz.raster.kernels.edge_table`)
 SORTED_IN_PLACE = 64  # polygons up to this many edges sort their edge table by insertion
 BAND_ROWS = 16  # sample rows per band of the parallel z-buffer (its unit of work)
+PARALLEL_WORK = 2**16  # polygons listed in bands plus pixels: below this, one thread draws
 
 
 @njit(cache=True, inline="always")
@@ -329,12 +330,14 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     )
     band_start, listed = _bands(first_row, stop_row, height)
     largest = int(np.diff(offsets).max()) if len(offsets) > 1 else 0
-    threads = numba.get_num_threads()
+    # Threads pay from about this much work: fewer listed polygons and pixels run here.
+    threads = numba.get_num_threads() if len(listed) + height * width > PARALLEL_WORK else 1
     depth = np.empty((height, width))
     ids = np.empty((height, width), np.int64)
     thread_stats = np.zeros((threads, STAT_FIELDS), np.int64)
     drew = np.zeros(len(offsets) - 1, np.bool_)
-    _draw_bands(
+    draw = _draw_bands if threads > 1 else _draw_bands_here
+    draw(
         units, offsets, scale, planes, channels, band_start, listed, largest, depth, ids,
         values, thread_stats, drew,
     )  # fmt: skip
@@ -343,7 +346,7 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     return depth, ids, values, stats
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def _polygon_rows(units, positions, z, offsets, scale, width, height):
     """Per polygon: its plane, the rows first_row <= y < stop_row it scans, and whether it is skipped."""
     count = offsets.shape[0] - 1
@@ -351,7 +354,7 @@ def _polygon_rows(units, positions, z, offsets, scale, width, height):
     first_row = np.zeros(count, np.int64)
     stop_row = np.zeros(count, np.int64)
     skipped = np.ones(count, np.bool_)
-    for p in prange(count):
+    for p in range(count):
         first, stop = offsets[p], offsets[p + 1]
         _, _, c, dzdx, dzdy, z_first = depth_plane(
             positions[first:stop, 0], positions[first:stop, 1], z[first:stop]
@@ -391,6 +394,20 @@ def _bands(first_row, stop_row, height):
                 listed[filled[b]] = p
                 filled[b] += 1
     return band_start, listed
+
+
+@njit(cache=True)
+def _draw_bands_here(
+    units, offsets, scale, planes, channels, band_start, listed, largest, depth, ids, values,
+    thread_stats, drew,
+):  # fmt: skip
+    """`_draw_bands` on the calling thread (small work: starting threads would cost more)."""
+    buffers = scratch(largest, channels.shape[1])
+    for b in range(band_start.shape[0] - 1):
+        _draw_band(
+            b, units, offsets, scale, planes, channels, band_start, listed, buffers, depth,
+            ids, values, thread_stats[0], drew,
+        )  # fmt: skip
 
 
 @njit(cache=True, parallel=True)

@@ -150,14 +150,15 @@ class ScreenPolygons:
 
         For `scanviz.pipeline.prepare`, which checks each field where it comes
         from (to name the object and the field in an error): the arrays are
-        taken as float64 / int64 copies, made read-only, not checked again.
+        taken as they are when C-ordered float64 / int64 (else as such
+        copies) and made read-only, not checked again.
         """
         polygons = object.__new__(cls)
         for name, array, dtype in (
             ("xy", xy, np.float64), ("z", z, np.float64), ("inv_w", inv_w, np.float64),
             ("values", values, np.float64), ("offsets", offsets, np.int64),
         ):  # fmt: skip
-            array = np.array(array, dtype=dtype, order="C")
+            array = np.ascontiguousarray(array, dtype=dtype)
             array.setflags(write=False)
             object.__setattr__(polygons, name, array)
         return polygons

@@ -13,7 +13,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanviz.visibility import ScreenPolygons, zbuffer
+from scanviz.visibility import ScreenPolygons, kernels, zbuffer
 from scanviz.visibility.kernels import BAND_ROWS
 
 BASE = settings.default.max_examples
@@ -42,7 +42,8 @@ def soups(draw):
 def test_banded_equals_reference_with_any_thread_count(polygons, perspective, bits):
     options = dict(perspective=perspective, subpixel_bits=bits)
     reference = zbuffer(polygons, WIDTH, HEIGHT, trace=True, **options)
-    before = numba.get_num_threads()
+    before, least = numba.get_num_threads(), kernels.PARALLEL_WORK
+    kernels.PARALLEL_WORK = 0  # the bands go to the threads however small the raster
     try:
         for threads in THREADS:
             numba.set_num_threads(threads)
@@ -54,6 +55,7 @@ def test_banded_equals_reference_with_any_thread_count(polygons, perspective, bi
             assert {**vars(compiled.stats), "path": ""} == {**vars(reference.stats), "path": ""}
     finally:
         numba.set_num_threads(before)
+        kernels.PARALLEL_WORK = least
 
 
 def test_a_polygon_across_every_band_and_beyond_the_raster():
