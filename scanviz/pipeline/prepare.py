@@ -16,7 +16,7 @@ from ..transform.clip import ACCEPT, CLIP, REJECT
 from ..vectors import unit_vectors
 from ..visibility import ScreenPolygons
 from ..visibility.zbuffer import VALUE_LIMIT
-from .prepare_kernels import clip_coordinates, face_verdicts, screen_vertices
+from .prepare_kernels import clip_coordinates, face_verdicts, in_range, screen_vertices, within
 from .result import RenderStats, Stage
 from .shade import _lit
 
@@ -287,9 +287,9 @@ def _checked_screen(xy, z, inv_w, values, sizes, vertex_object, shading) -> Scre
         ),
     ]
     for what, array, limit, rule in checks:
-        if array.size and not np.abs(array).max() <= limit:  # one pass; NaN fails it too
+        if not within(array, limit):  # one pass; NaN fails it too
             _check_vertices(what, ~(np.abs(array) <= limit).all(axis=1), vertex_object, rule)
-    if len(inv_w) and not (inv_w.min() >= 1 / VALUE_LIMIT and inv_w.max() <= VALUE_LIMIT):
+    if not in_range(inv_w, 1 / VALUE_LIMIT, VALUE_LIMIT):
         far = ~((inv_w >= 1 / VALUE_LIMIT) & (inv_w <= VALUE_LIMIT))
         rule = f"in [{1 / VALUE_LIMIT:g}, {VALUE_LIMIT:g}]"
         _check_vertices("positions (1/w)", far, vertex_object, rule)

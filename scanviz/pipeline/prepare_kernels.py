@@ -92,3 +92,22 @@ def screen_vertices(clip, corners, width, height):
         z[k] = clip[v, 2] / w
         inv_w[k] = 1 / w
     return xy, z, inv_w
+
+
+@njit(cache=True)
+def within(array, limit):
+    """Whether every entry of the 2-D `array` is within +-limit (False on NaN)."""
+    for i in range(array.shape[0]):
+        for j in range(array.shape[1]):
+            if not abs(array[i, j]) <= limit:
+                return False
+    return True
+
+
+@njit(cache=True)
+def in_range(vector, low, high):
+    """Whether every entry of `vector` is in [low, high] (False on NaN)."""
+    for i in range(vector.shape[0]):
+        if not (vector[i] >= low and vector[i] <= high):
+            return False
+    return True

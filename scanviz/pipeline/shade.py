@@ -66,6 +66,8 @@ def _image_function(
     material in place of the kept one. Row by row arithmetic (`illuminate`),
     so the colors do not depend on which other pixels are shaded.
     """
+    if shading == "phong" and not materials:  # each visible pixel shaded where it is kept
+        return _phong_image(scene, polygon, values), int((polygon >= 0).sum())
     visible = np.flatnonzero(polygon.ravel() >= 0)
     attributes = values.reshape(-1, values.shape[-1])[visible]
     if materials:
@@ -76,6 +78,18 @@ def _image_function(
     image[...] = scene.background
     image.reshape(-1, 3)[visible] = _shade_pixels(scene, shading, attributes)
     return image, len(attributes)
+
+
+def _phong_image(scene: Scene, polygon: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """`_image_function` for Phong without new materials: the compiled model over the buffers."""
+    from ..shading.illumination import _light_arrays
+    from ..shading.kernels import shade_image
+
+    eye, view_dir = _viewer(scene.camera)
+    return shade_image(
+        polygon, values, *_light_arrays(eye, view_dir, scene.lights),
+        np.asarray(scene.ambient, np.float64), np.asarray(scene.background, np.float64),
+    )  # fmt: skip
 
 
 def _material_row(material: Material) -> np.ndarray:

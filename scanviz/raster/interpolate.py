@@ -38,6 +38,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from .. import steps
 from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
@@ -198,7 +199,19 @@ def vertex_channels(values: np.ndarray, inv_w: np.ndarray, perspective: bool) ->
     """
     if not perspective:
         return np.array(values, dtype=np.float64)
-    return np.column_stack([values * inv_w[:, None], inv_w])
+    return _over_w(np.asarray(values, np.float64), np.asarray(inv_w, np.float64))
+
+
+@njit(cache=True)
+def _over_w(values, inv_w):  # pragma: no cover - compiled
+    """``column_stack([values * inv_w[:, None], inv_w])`` in one pass (the same products)."""
+    count, k = values.shape
+    out = np.empty((count, k + 1))
+    for i in range(count):
+        for j in range(k):
+            out[i, j] = values[i, j] * inv_w[i]
+        out[i, k] = inv_w[i]
+    return out
 
 
 @dataclass(frozen=True)

@@ -341,7 +341,16 @@ def illuminate(
 
 def _shade_compiled(positions, normals, materials, eye, view_dir, lights, ambient_light):
     """`_shade` without steps, by the compiled twin (`scanviz.shading.kernels`): the same bits."""
-    from .kernels import DIRECTIONAL, POINT, shade_rows
+    from .kernels import shade_rows
+
+    return shade_rows(
+        positions, normals, materials, *_light_arrays(eye, view_dir, lights), ambient_light
+    )
+
+
+def _light_arrays(eye, view_dir, lights):
+    """(eye, toward_viewer, kinds, vectors, colors): the viewer and lights as `shade_rows` takes them."""
+    from .kernels import DIRECTIONAL, POINT
 
     if eye is not None:
         eye, toward_viewer = _vector("eye", eye), np.full(3, np.nan)
@@ -358,9 +367,7 @@ def _shade_compiled(positions, normals, materials, eye, view_dir, lights, ambien
         np.float64,
     ).reshape(-1, 3)
     colors = np.array([light.color for light in lights], np.float64).reshape(-1, 3)
-    return shade_rows(
-        positions, normals, materials, eye, toward_viewer, kinds, vectors, colors, ambient_light
-    )
+    return eye, toward_viewer, kinds, vectors, colors
 
 
 def _floats(row: np.ndarray) -> tuple[float, ...]:

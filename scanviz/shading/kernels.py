@@ -59,6 +59,36 @@ def shade_rows(positions, normals, materials, eye, view_dir, kinds, vectors, col
     return out
 
 
+def shade_image(polygon, values, eye, view_dir, kinds, vectors, colors, ambient_light, background):
+    """(H, W, 3): `shade_rows` of every pixel with polygon >= 0 from its values (normal,
+    position, material: 15 columns), the background elsewhere; no pixel is gathered first.
+    """
+    flat = values.reshape(-1, values.shape[-1])
+    ids = polygon.ravel()
+    out = np.empty((len(ids), 3))
+    shade = _shade_image_shared if len(ids) > PARALLEL_POINTS else _shade_image_here
+    shade(ids, flat[:, 3:6], flat[:, 0:3], flat[:, 6:15], eye, view_dir, kinds, vectors, colors, ambient_light, background, out)  # fmt: skip
+    return out.reshape(*polygon.shape, 3)
+
+
+@njit(cache=True, parallel=True)
+def _shade_image_shared(ids, positions, normals, materials, eye, view_dir, kinds, vectors, colors, ambient_light, background, out):  # fmt: skip
+    for i in prange(ids.shape[0]):
+        if ids[i] < 0:
+            out[i, 0], out[i, 1], out[i, 2] = background[0], background[1], background[2]
+        else:
+            shade_point(i, positions, normals, materials, eye, view_dir, kinds, vectors, colors, ambient_light, out)  # fmt: skip
+
+
+@njit(cache=True)
+def _shade_image_here(ids, positions, normals, materials, eye, view_dir, kinds, vectors, colors, ambient_light, background, out):  # fmt: skip
+    for i in range(ids.shape[0]):
+        if ids[i] < 0:
+            out[i, 0], out[i, 1], out[i, 2] = background[0], background[1], background[2]
+        else:
+            shade_point(i, positions, normals, materials, eye, view_dir, kinds, vectors, colors, ambient_light, out)  # fmt: skip
+
+
 @njit(cache=True, parallel=True)
 def _shade_shared(positions, normals, materials, eye, view_dir, kinds, vectors, colors, ambient_light, out):  # fmt: skip
     for i in prange(positions.shape[0]):

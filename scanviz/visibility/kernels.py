@@ -346,7 +346,6 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     return depth, ids, values, stats
 
 
-@njit(cache=True)
 def _polygon_rows(units, positions, z, offsets, scale, width, height):
     """Per polygon: its plane, the rows first_row <= y < stop_row it scans, and whether it is skipped."""
     count = offsets.shape[0] - 1
@@ -354,25 +353,39 @@ def _polygon_rows(units, positions, z, offsets, scale, width, height):
     first_row = np.zeros(count, np.int64)
     stop_row = np.zeros(count, np.int64)
     skipped = np.ones(count, np.bool_)
-    for p in range(count):
-        first, stop = offsets[p], offsets[p + 1]
-        _, _, c, dzdx, dzdy, z_first = depth_plane(
-            positions[first:stop, 0], positions[first:stop, 1], z[first:stop]
-        )
-        xs, ys = units[first:stop, 0], units[first:stop, 1]
-        y_min, y_max = ys.min(), ys.max()
-        if c != 0.0 and reaches_raster(xs.min(), xs.max(), y_min, y_max, scale, width, height):
-            planes[p, 0], planes[p, 1], planes[p, 2] = (
-                positions[first, 0],
-                positions[first, 1],
-                z_first,
-            )
-            planes[p, 3], planes[p, 4] = dzdx, dzdy
-            skipped[p] = False
-            first_row[p] = max(ceil_div(y_min, scale), 0)
-            # The row above the last is scanned too: its edges are retired there (ROWS counts it).
-            stop_row[p] = min(ceil_div(y_max, scale) + 1, height)
+    rows = _polygon_rows_shared if count > PARALLEL_WORK // 8 else _polygon_rows_here
+    rows(units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped)
     return planes, first_row, stop_row, skipped
+
+
+@njit(cache=True, parallel=True)
+def _polygon_rows_shared(units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped):  # fmt: skip
+    for p in prange(offsets.shape[0] - 1):
+        _polygon_row(p, units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped)  # fmt: skip
+
+
+@njit(cache=True)
+def _polygon_rows_here(units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped):  # fmt: skip
+    for p in range(offsets.shape[0] - 1):
+        _polygon_row(p, units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped)  # fmt: skip
+
+
+@njit(cache=True, inline="always")
+def _polygon_row(p, units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped):  # fmt: skip
+    """Polygon p's entries of `_polygon_rows`."""
+    first, stop = offsets[p], offsets[p + 1]
+    _, _, c, dzdx, dzdy, z_first = depth_plane(
+        positions[first:stop, 0], positions[first:stop, 1], z[first:stop]
+    )
+    xs, ys = units[first:stop, 0], units[first:stop, 1]
+    y_min, y_max = ys.min(), ys.max()
+    if c != 0.0 and reaches_raster(xs.min(), xs.max(), y_min, y_max, scale, width, height):
+        planes[p, 0], planes[p, 1], planes[p, 2] = positions[first, 0], positions[first, 1], z_first
+        planes[p, 3], planes[p, 4] = dzdx, dzdy
+        skipped[p] = False
+        first_row[p] = max(ceil_div(y_min, scale), 0)
+        # The row above the last is scanned too: its edges are retired there (ROWS counts it).
+        stop_row[p] = min(ceil_div(y_max, scale) + 1, height)
 
 
 @njit(cache=True)
