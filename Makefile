@@ -42,10 +42,9 @@ test: lint $(NUMBA_STAMP) chromium
 	$(BIN)/python -m scanviz conformance
 	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
+# Every bench suite into one report (docs/benchmarks.md); its plots into bench-plots/.
 bench: $(STAMP) $(NUMBA_STAMP)
-	$(BIN)/python -m scanviz bench raster
-	$(BIN)/python -m scanviz bench render
-	$(BIN)/python -m scanviz bench visibility
+	$(BIN)/python -m scanviz bench all --report bench-report.md --plot-dir bench-plots
 
 clean:
 	rm -rf $(VENV) .pytest_cache .hypothesis

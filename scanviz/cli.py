@@ -4,8 +4,9 @@ Bad input exits with status 2 and exactly one line on stderr, never a
 traceback: a ValueError, TypeError or OSError (a refused resource limit is a
 ValueError) is the user's error, reported with newlines and other control
 characters escaped as in a Python string literal. Ctrl-C prints
-``interrupted`` and exits with 130. Any other exception is a bug and shows
-its traceback. Reference: ``docs/cli.md``.
+``interrupted`` (``bench: interrupted``, with where ``bench all`` wrote its
+partial report) and exits with 130. Any other exception is a bug and shows
+its traceback. Reference: ``docs/cli.md``, ``docs/benchmarks.md``.
 """
 
 from __future__ import annotations
@@ -214,9 +215,12 @@ _BENCH_OPTIONS = {
 """The options of the suites that take any: a suite gets those given of its own."""
 
 
-def _cmd_bench(args: argparse.Namespace) -> None:
-    from .bench import run
+_ALL_OPTIONS = ("report", "plot_dir")
+"""The options of 'bench all' (and 'bench compare' takes two report files)."""
 
+
+def _check_bench_options(args: argparse.Namespace) -> None:
+    """Refuse an option of another suite (or of 'bench all') with one line naming its takers."""
     own = _BENCH_OPTIONS.get(args.suite, ())
     others = dict.fromkeys(n for names in _BENCH_OPTIONS.values() for n in names if n not in own)
     given = [name for name in others if getattr(args, name) is not None]
@@ -225,8 +229,55 @@ def _cmd_bench(args: argparse.Namespace) -> None:
         takers = " or ".join(f"'bench {s}'" for s in suites) or "different bench suites"
         flags = ", ".join(f"--{name}" for name in given)
         raise ValueError(f"{flags}: options of {takers} only")
-    options = {name: getattr(args, name) for name in own if getattr(args, name) is not None}
-    run(args.suite, quick=args.quick, plot=args.plot, **options)
+    given = [f"--{n.replace('_', '-')}" for n in _ALL_OPTIONS if getattr(args, n) is not None]
+    if given and args.suite != "all":
+        raise ValueError(f"{', '.join(given)}: options of 'bench all' only")
+    if args.suite == "all" and args.plot is not None:
+        raise ValueError("--plot: 'bench all' takes --plot-dir DIR (a plot per suite)")
+    if (args.suite == "compare") != bool(args.reports) or len(args.reports) not in (0, 2):
+        raise ValueError("'bench compare' takes two report files (A.md B.md); no other suite does")
+
+
+def _cmd_bench(args: argparse.Namespace) -> int:
+    from .bench import run
+
+    _check_bench_options(args)
+    if args.suite == "compare":
+        from .bench.report import compare
+
+        print(compare(*args.reports))
+        return 0
+    if args.suite == "all":
+        return _bench_all(args)
+    options = {n: getattr(args, n) for n in _BENCH_OPTIONS.get(args.suite, ()) if getattr(args, n) is not None}  # fmt: skip
+    try:
+        run(args.suite, quick=args.quick, plot=args.plot, **options)
+    except KeyboardInterrupt:
+        print("bench: interrupted", file=sys.stderr)
+        return 130
+    return 0
+
+
+def _bench_all(args: argparse.Namespace) -> int:
+    """Every suite into one report; 130 on Ctrl-C (the report of the finished suites is kept)."""
+    from .bench.report import run_all
+
+    report = args.report or "bench-report.md"
+    command = "python -m scanviz bench all" + " --quick" * args.quick + f" --report {report}"
+    if args.plot_dir is not None:
+        command += f" --plot-dir {args.plot_dir}"
+    try:
+        runs = run_all(report, quick=args.quick, plot_dir=args.plot_dir, command=command)
+    except KeyboardInterrupt:
+        print(f"bench: interrupted (partial report written to {report})", file=sys.stderr)
+        return 130
+    failed = [r.suite for r in runs if r.status != "ok"]
+    seconds = sum(r.seconds for r in runs)
+    print(f"{report}: {len(runs)} suites in {seconds:.0f} s" + (f", failed: {', '.join(failed)}" if failed else ""))  # fmt: skip
+    if failed:
+        print(f"bench all: {len(failed)} suites failed (tracebacks in {report})", file=sys.stderr)
+        return 1
+    return 0
 
 
 def _load(source: str, width: int, height: int):
@@ -711,14 +762,26 @@ def build_parser() -> argparse.ArgumentParser:
     _add_surface_options(surface)
     surface.set_defaults(run=_cmd_surface)
     bench = commands.add_parser("bench", help="benchmarks: run time against peers and error")
-    bench.add_argument("suite", choices=SUITES)
+    bench.add_argument(
+        "suite",
+        choices=(*SUITES, "all", "compare"),
+        help="a suite; all: every suite into one report; compare A.md B.md: two reports' times",
+    )
+    bench.add_argument("reports", nargs="*", metavar="REPORT.md", help="compare: the two reports")
     bench.add_argument("--quick", action="store_true", help="smaller scenes, for a smoke test")
     bench.add_argument(
         "--plot",
         metavar="PATH",
         help="coverage: error-vs-time plot file (default coverage.png); "
         "visibility: time-vs-polygons, surfaces: time-vs-grid and -image, "
-        "antialias: error-vs-time plot file (default: none)",
+        "antialias: error-vs-time, scaling: time-vs-triangles and -pixels plot file "
+        "(default: none)",
+    )
+    bench.add_argument(
+        "--report", metavar="PATH.md", help="all: the Markdown report (default bench-report.md)"
+    )
+    bench.add_argument(
+        "--plot-dir", metavar="DIR", help="all: save each suite's plot as DIR/SUITE.png"
     )
     _add_suite_bench_options(bench)
     bench.set_defaults(run=_cmd_bench)

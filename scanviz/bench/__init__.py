@@ -8,11 +8,16 @@ measures installed peers (OpenCV, ...) on the same scenes in the same run;
 the z-buffer on grid surfaces and prints Wang's Table 2-4 storage beside ours;
 ``shading`` times flat, Gouraud, fast Phong and Phong against their error;
 ``antialias`` compares DISLOP with Wu, Gupta-Sproull, supersampling, masks,
-skia and OpenCV on lines, edges and disks against the exact area.
+skia and OpenCV on lines, edges and disks against the exact area;
+``scaling`` times the z-buffer, the a-buffer and the scan converter over
+10^3..10^6 triangles and 256^2..4096^2 pixels and fits the growth exponents.
+``python -m scanviz bench all --report PATH.md`` runs every suite into one
+Markdown report (`scanviz.bench.report`).
 """
 
 from __future__ import annotations
 
+import importlib
 import statistics
 import time
 from collections.abc import Callable
@@ -26,7 +31,10 @@ SUITES = (
     "surfaces",
     "shading",
     "antialias",
+    "scaling",
 )
+PLOTTING = ("coverage", "visibility", "surfaces", "shading", "antialias", "scaling")
+"""The suites whose ``run_*`` takes ``plot=`` (a file to save a plot in, or None)."""
 
 
 def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float = 2.0) -> float:
@@ -41,44 +49,23 @@ def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float 
     return statistics.median(times)
 
 
-def run(suite: str, *, quick: bool = False, plot: str | None = None, **options: object) -> None:
-    """Run one benchmark suite and print its table.
-
-    `plot` is where "coverage" (default coverage.png), "visibility",
-    "surfaces" or "antialias" (default: no plot) saves its plot; `options` go to
-    `run_visibility` or `run_surfaces`.
-    """
-    if suite == "raster":
-        from .raster import run_raster
-
-        run_raster(quick=quick)
-    elif suite == "render":
-        from .render import run_render
-
-        run_render(quick=quick)
-    elif suite == "coverage":
-        from .coverage import run_coverage
-
-        run_coverage(quick=quick, plot=plot or "coverage.png")
-    elif suite == "grading":
-        from .grading import run_grading
-
-        run_grading(quick=quick)
-    elif suite == "visibility":
-        from .visibility import run_visibility
-
-        run_visibility(quick=quick, plot=plot, **options)
-    elif suite == "surfaces":
-        from .surfaces import run_surfaces
-
-        run_surfaces(quick=quick, plot=plot, **options)
-    elif suite == "shading":
-        from .shading import run_shading
-
-        run_shading(quick=quick, plot=plot, **options)
-    elif suite == "antialias":
-        from .antialias import run_antialias
-
-        run_antialias(quick=quick, plot=plot)
-    else:
+def suite_function(suite: str) -> Callable[..., list[dict]]:
+    """The function ``run_<suite>`` of module ``scanviz.bench.<suite>``, which returns its rows."""
+    if suite not in SUITES:
         raise ValueError(f"'suite' must be one of {SUITES}; got {suite!r}")
+    return getattr(importlib.import_module(f"{__name__}.{suite}"), f"run_{suite}")
+
+
+def run(
+    suite: str, *, quick: bool = False, plot: str | None = None, **options: object
+) -> list[dict]:
+    """Run one benchmark suite, print its table and return its rows.
+
+    `plot` is where a suite of `PLOTTING` saves its plot ("coverage": default
+    coverage.png; the others: no plot); `options` go to `run_visibility`,
+    `run_surfaces` or `run_shading`.
+    """
+    function = suite_function(suite)
+    if suite in PLOTTING:
+        options["plot"] = plot or ("coverage.png" if suite == "coverage" else None)
+    return function(quick=quick, **options)
