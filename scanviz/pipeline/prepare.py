@@ -65,6 +65,11 @@ class _ObjectInWorld:
     palette: np.ndarray  # (1 + materials, 9): row 0 is the object's material
     face_material: np.ndarray  # (F,) palette row: polygon level
     corner_material: np.ndarray  # (sum sizes,) palette row: vertex level, inherited
+    # Where every corner of a vertex has that vertex's normal and material (smooth or given
+    # normals, no face materials): those per vertex, so Gouraud lights each vertex once.
+    vertex_normals: np.ndarray | None
+    vertex_material: np.ndarray | None
+    centroids: np.ndarray  # (F, 3) mean of each face's corners: where flat shading lights it
     kept: dict = field(default_factory=dict)  # per-corner tables made once, on first use
 
     def corner_surface(self) -> np.ndarray:
@@ -101,12 +106,14 @@ def _world_space(obj) -> _ObjectInWorld:
     corners, face_of_corner = flat_faces.corner, flat_faces.face
     sizes = np.diff(np.append(flat_faces.starts, len(corners)))
     faces_n = face_normals(world, flat_faces)
+    per_vertex = None
     if mesh.normals is not None:
         # Normals take the inverse transpose; unit first, so no product overflows.
-        normals = unit_vectors(unit_vectors(mesh.normals) @ np.linalg.inv(matrix[:3, :3]))
-        corner_normals = normals[corners]
+        per_vertex = unit_vectors(unit_vectors(mesh.normals) @ np.linalg.inv(matrix[:3, :3]))
+        corner_normals = per_vertex[corners]
     elif mesh.smooth:
-        corner_normals = vertex_normals(world, flat_faces)[corners]
+        per_vertex = vertex_normals(world, flat_faces)
+        corner_normals = per_vertex[corners]
     else:
         corner_normals = faces_n[face_of_corner]
     face_material = np.zeros(len(sizes), np.int64)
@@ -116,6 +123,19 @@ def _world_space(obj) -> _ObjectInWorld:
     if mesh.vertex_materials is not None:
         own = mesh.vertex_materials[corners]
         corner_material = np.where(own >= 0, own + 1, corner_material)
+    vertex_material = None
+    if per_vertex is not None and mesh.face_materials is None:
+        vertex_material = np.zeros(len(world), np.int64)
+        if mesh.vertex_materials is not None:
+            vertex_material = np.where(mesh.vertex_materials >= 0, mesh.vertex_materials + 1, 0)
+    else:
+        per_vertex = None
+    starts = flat_faces.starts
+    centroids = (
+        np.add.reduceat(world[corners], starts) / sizes[:, None]
+        if len(starts)
+        else np.zeros((0, 3))
+    )
     palette = material_array((obj.material, *mesh.materials))
     found = _ObjectInWorld(
         world,
@@ -128,6 +148,9 @@ def _world_space(obj) -> _ObjectInWorld:
         palette,
         face_material,
         corner_material,
+        per_vertex,
+        vertex_material,
+        centroids,
     )
     for array in (*(getattr(found, f.name) for f in fields(found)), *flat_faces):
         if isinstance(array, np.ndarray):
@@ -175,7 +198,10 @@ def prepare(
         stats.off_screen += int((verdict == REJECT).sum())
         stats.accepted += int(accepted.sum())
         # Attributes per corner, by shading model.
-        if shading == "gouraud":
+        if shading == "gouraud" and o.vertex_normals is not None:  # each vertex lit once
+            values = _lit(scene, world, o.vertex_normals, o.palette[o.vertex_material])[corners]
+            stats.shaded_vertices += len(world)
+        elif shading == "gouraud":  # corners of one vertex differ: each corner lit
             values = _lit(scene, world[corners], o.corner_normals, o.palette[o.corner_material])
             stats.shaded_vertices += len(values)
         elif shading in ("phong", "gooch", "fast_phong"):
@@ -184,9 +210,7 @@ def prepare(
             values = np.zeros((len(corners), 0))
         flat = np.zeros((len(faces), 3 if shading == "flat" else 0))
         if shading == "flat" and len(faces):
-            starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-            centroids = np.add.reduceat(world[corners], starts) / sizes[:, None]
-            flat = _lit(scene, centroids, o.face_normals, o.palette[o.face_material])
+            flat = _lit(scene, o.centroids, o.face_normals, o.palette[o.face_material])
 
         corner_keep = slice(None) if everything else np.repeat(accepted, sizes)
         face_keep = slice(None) if everything else accepted
