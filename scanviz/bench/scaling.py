@@ -30,6 +30,11 @@ skipped and says so, and a point still running after `TIMEOUT` seconds is
 killed. A point the memory limit (`scanviz.limits`) refuses is reported with
 the limit's message. The growth exponent of each method is the least-squares
 slope of log time on log triangles (or pixels), over runs longer than 1 ms.
+
+A last table (`run_output_cases`, in this process) times the cases whose
+cost once grew faster than their output: a-buffer lists n fragments long,
+`area_coverage` of an n-vertex self-crossing polygon, and feature edges
+that lie off the raster as the view zooms n times in.
 """
 
 from __future__ import annotations
@@ -350,7 +355,7 @@ def run_scaling(*, quick: bool = False, plot: str | None = None) -> list[dict]:
     if plot:
         save_plot(rows + fitted, plot)
         print(f"plot: {plot}")
-    return rows + fitted
+    return rows + fitted + run_output_cases(quick=quick)
 
 
 def _sweep(sweep: str, method: str, swept: list[tuple[int, int]], quick: bool, bar) -> list[dict]:
@@ -411,3 +416,109 @@ def save_plot(rows: list[dict], path: str) -> None:
     panels["pixels"].set_title("time against pixels (fixed mesh)")
     figure.tight_layout()
     figure.savefig(path, dpi=120)
+
+
+# --- cost in proportion to the output: the cases that once grew faster than their work -------
+
+OUTPUT_CASES = {
+    "abuffer lists": "n translucent triangles over one 32² raster: lists n long (render abuffer)",
+    "area_coverage": "a random n-vertex self-crossing polygon on 16² (~n²/4 crossings)",
+    "edges off raster": "render(terrain, 8, 8, edges=True) zoomed n x in (--quick: a 8 x 8 grid)",
+}
+OUTPUT_SIZES = {
+    "abuffer lists": (250, 500, 1000, 2000, 4000),
+    "area_coverage": (125, 250, 500, 1000, 2000),
+    "edges off raster": (1, 4, 16, 64, 256),
+}
+QUICK_OUTPUT_SIZES = {
+    "abuffer lists": (16, 32, 64),
+    "area_coverage": (16, 32, 64),
+    "edges off raster": (1, 2, 4),
+}
+
+
+def _translucent_stack(count: int):
+    """`count` random large triangles over [-1, 1]², each half transparent, seen from above."""
+    from ..scene.model import Camera, Light, Material, Mesh, Scene, SceneObject
+
+    rng = np.random.default_rng(count)
+    corners = rng.uniform(-1.5, 1.5, (count, 3, 2))
+    depth = np.repeat(np.linspace(0.0, 1.0, count)[:, None, None], 3, axis=1)
+    positions = np.concatenate([corners, depth], axis=2).reshape(-1, 3)
+    faces = np.arange(3 * count).reshape(-1, 3)
+    mesh = Mesh(positions, [np.asarray(f) for f in faces], smooth=False, closed=False)
+    material = Material(color=(0.8, 0.4, 0.2), transparency=0.5)
+    camera = Camera(eye=(0, 0, 3), near=1.0, far=5.0, projection="orthographic")
+    return Scene((SceneObject(mesh, material),), camera, lights=(Light(),))
+
+
+def _zoomed_terrain(zoom: int, quick: bool):
+    import dataclasses
+
+    from ..scene.builtin import builtin_scene
+
+    scene = builtin_scene("terrain", **({"n": 8} if quick else {}))
+    window = tuple(v / zoom for v in scene.camera.window)
+    return dataclasses.replace(scene, camera=dataclasses.replace(scene.camera, window=window))
+
+
+def _output_case(case: str, n: int, quick: bool):
+    """(draw, description of the output) for case `case` at size n; draw() does the work."""
+    from ..abuffer import area_coverage
+    from ..pipeline import render
+
+    if case == "abuffer lists":
+        scene = _translucent_stack(n)
+        return lambda: render(scene, 32, 32, shading="flat", visibility="abuffer")
+    if case == "area_coverage":
+        polygon = np.random.default_rng(0).uniform(0, 16, (n, 2))
+        return lambda: area_coverage(polygon, 16, 16)
+    scene = _zoomed_terrain(n, quick)
+    return lambda: render(scene, 8, 8, shading="flat", edges=True)
+
+
+def run_output_cases(*, quick: bool = False) -> list[dict]:
+    """Time each case over its sizes (skipping past the budget), print rows and exponents."""
+    sizes_of = QUICK_OUTPUT_SIZES if quick else OUTPUT_SIZES
+    print("\ncost against the size n of cases that used to grow faster than their output")
+    for case, what in OUTPUT_CASES.items():
+        print(f"  {case}: {what}")
+    print(f"{'case':<18}{'n':>7}{'ms':>11}")
+    rows = []
+    with progress(sum(len(s) for s in sizes_of.values()), "output cases") as bar:
+        for case, sizes in sizes_of.items():
+            history, stop = [], ""
+            for n in sizes:
+                guess = _predicted(history, n)
+                if not stop and guess > BUDGET:
+                    stop = f"predicted {guess:.0f} s per run > {BUDGET:g} s"
+                row = {"sweep": "output", "method": case, "n": n}
+                if stop:
+                    row |= {"status": "skipped", "reason": stop}
+                    bar.write(f"{case:<18}{n:>7}  skipped: {stop}")
+                else:
+                    draw = _output_case(case, n, quick)
+                    draw()  # compiles or loads the kernels; not counted
+                    seconds = _median_run(draw)
+                    history.append((n, seconds))
+                    row |= {"status": "ok", "ms": seconds * 1e3}
+                    bar.write(f"{case:<18}{n:>7}{_three_digits(seconds * 1e3):>11}")
+                rows.append(row)
+                bar.update()
+    print(f"{'case':<18}{'k(n)':>7}   (time ~ n^k, least squares over runs > 1 ms)")
+    for case in sizes_of:
+        done = [r for r in rows if r["method"] == case and r["status"] == "ok"]
+        fit = growth_exponent([r["n"] for r in done], [r["ms"] / 1e3 for r in done])
+        rows.append({"sweep": "output fit", "method": case, "k_n": None if fit is None else fit[0]})
+        print(f"{case:<18}{'n/a' if fit is None else f'{fit[0]:.2f}':>7}")
+    return rows
+
+
+def _median_run(draw) -> float:
+    times: list[float] = []
+    started = time.perf_counter()
+    while len(times) < REPEAT and (not times or time.perf_counter() - started < BUDGET / 3):
+        tick = time.perf_counter()
+        draw()
+        times.append(time.perf_counter() - tick)
+    return statistics.median(times)
