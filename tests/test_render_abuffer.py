@@ -228,3 +228,50 @@ def test_issue8_d1_terrain_renders_through_the_a_buffer(shading, visibility):
     # The terrain's vertex materials differ in exponent: pixel-center planes made them negative.
     result = render(builtin_scene("terrain", n=4), 8, 8, shading=shading, visibility=visibility)
     assert np.isfinite(result.image).all() and result.stats.fragments > 0
+
+
+def test_issue14_d2_an_interrupt_stops_the_compiled_fragments_between_chunks(monkeypatch):
+    import scanviz.abuffer.fragment_kernels as fragment_kernels
+
+    monkeypatch.setattr(fragment_kernels, "CHUNK_POLYGONS", 10)
+    firsts, compiled = [], fragment_kernels.chunk_fragments
+
+    def interrupted(*args):
+        firsts.append(args[6])  # the chunk's first polygon
+        if len(firsts) == 3:
+            raise KeyboardInterrupt
+        return compiled(*args)
+
+    monkeypatch.setattr(fragment_kernels, "chunk_fragments", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        render(builtin_scene("sphere", level=1), 8, 8, visibility="abuffer")
+    assert firsts == [0, 10, 20]
+
+
+def test_issue14_d2_traced_fragments_stop_between_polygons(monkeypatch):
+    import scanviz.abuffer.fragments
+
+    drawn = []
+
+    def interrupted(*args, polygon_index, **kwargs):
+        drawn.append(polygon_index)
+        if polygon_index == 3:
+            raise KeyboardInterrupt
+        return None
+
+    monkeypatch.setattr(scanviz.abuffer.fragments, "polygon_fragments", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        render(builtin_scene("sphere", level=1), 8, 8, visibility="abuffer", trace=True)
+    assert drawn == [0, 1, 2, 3]
+
+
+@pytest.mark.parametrize("name", ["sphere", "terrain"])
+def test_issue14_d2_object_merge_keeps_lists_short_and_the_sphere_unchanged(name):
+    scene = builtin_scene(name, **({"level": 2} if name == "sphere" else {"n": 12}))
+    plain = render(scene, 24, 24, visibility="abuffer")
+    merged = render(scene, 24, 24, visibility="abuffer", merge="object")
+    assert merged.abuffer.stats.fragments_object_merged > 0
+    assert merged.abuffer.stats.longest_list <= plain.abuffer.stats.longest_list
+    assert merged.abuffer.stats.pixels_simple >= plain.abuffer.stats.pixels_simple
+    if name == "sphere":  # a convex surface: the merge changes the image by rounding only
+        np.testing.assert_allclose(merged.image, plain.image, rtol=0, atol=1e-12)

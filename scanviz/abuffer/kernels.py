@@ -20,6 +20,7 @@ from .pixelstruct import SAME_SURFACE_TOLERANCE, ABufferStats, FragmentTable, Re
 # Fields of the stats array returned by `insert_fragments`.
 MERGED, DISCARDED, LONGEST = range(3)
 AREA_WEIGHTS, MASK_WEIGHTS = 0, 1
+OBJECT_KEY_LIMIT = 2**45  # object * 128 + popcount is an exact float64 key within this
 
 
 @njit(cache=True, inline="always")
@@ -72,51 +73,210 @@ def combine(table, slot, incoming):
     mask[slot] = mask[slot] | mask[incoming]
 
 
+@njit(cache=True, inline="always")
+def _before(key_a, seq_a, key_b, seq_b):
+    """Whether (key_a, seq_a) sorts before (key_b, seq_b)."""
+    return key_a < key_b or (key_a == key_b and seq_a < seq_b)
+
+
+@njit(cache=True)
+def _split(root, key, seq, keys, seqs, left, right):
+    """Split a treap into (its nodes sorting before (key, seq), the others).
+
+    Iterative: the two halves grow from two spare hook slots at the ends of
+    `left`/`right`, down the search path. O(depth).
+    """
+    low_hook, high_hook = len(left) - 2, len(left) - 1
+    low_tail, high_tail, node = low_hook, high_hook, root
+    while node >= 0:
+        if _before(keys[node], seqs[node], key, seq):
+            right[low_tail], low_tail, node = node, node, right[node]
+        else:
+            left[high_tail], high_tail, node = node, node, left[node]
+    right[low_tail] = left[high_tail] = -1
+    return right[low_hook], left[high_hook]
+
+
+@njit(cache=True)
+def _merge(low, high, priority, left, right):
+    """Join treaps `low` and `high` (every node of `low` sorting first); returns the root. O(depth)."""
+    if low < 0 or high < 0:
+        return low if high < 0 else high
+    root = low if priority[low] > priority[high] else high
+    parent, on_right = -1, False
+    while low >= 0 and high >= 0:
+        top = low if priority[low] > priority[high] else high
+        if parent >= 0:
+            if on_right:
+                right[parent] = top
+            else:
+                left[parent] = top
+        parent = top
+        if top == low:
+            on_right, low = True, right[low]
+        else:
+            on_right, high = False, left[high]
+    if on_right:
+        right[parent] = low if low >= 0 else high
+    else:
+        left[parent] = low if low >= 0 else high
+    return root
+
+
+@njit(cache=True, inline="always")
+def _insert(root, node, keys, seqs, priority, left, right):
+    low, high = _split(root, keys[node], seqs[node], keys, seqs, left, right)
+    left[node] = right[node] = -1
+    return _merge(_merge(low, node, priority, left, right), high, priority, left, right)
+
+
+@njit(cache=True, inline="always")
+def _remove(root, node, keys, seqs, priority, left, right):
+    low, rest = _split(root, keys[node], seqs[node], keys, seqs, left, right)
+    _, high = _split(rest, keys[node], seqs[node] + 1, keys, seqs, left, right)
+    return _merge(low, high, priority, left, right)
+
+
+@njit(cache=True)
+def _in_order(root, left, right, stack, out):
+    """The nodes of a treap in key order into `out`; returns their number."""
+    top = count = 0
+    node = root
+    while node >= 0 or top > 0:
+        while node >= 0:
+            stack[top] = node
+            top += 1
+            node = left[node]
+        top -= 1
+        node = stack[top]
+        out[count] = node
+        count += 1
+        node = right[node]
+    return count
+
+
+@njit(cache=True)
+def _priorities(count):
+    """Deterministic pseudo-random treap priorities (splitmix64 of the slot)."""
+    priority = np.empty(count, np.uint64)
+    for i in range(count):
+        h = np.uint64(i) + np.uint64(0x9E3779B97F4A7C15)
+        h = (h ^ (h >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        h = (h ^ (h >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        priority[i] = h ^ (h >> np.uint64(31))
+    return priority
+
+
 @njit(cache=True)
 def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pixel_count, full):
     """Insert fragments in drawing order; edits the field arrays (slots) in place.
 
     Returns (head, after, stats): list heads per pixel, links per slot, and
-    the MERGED, DISCARDED, LONGEST counts.
+    the MERGED, DISCARDED, LONGEST counts. Each pixel's list is a treap keyed
+    by (zmin, time of insertion): `insert_sorted`'s order, found in O(log n).
+    Only its last fragment can hide what is behind (everything behind the
+    first one that hides is discarded), so `hider[p]` answers the discard
+    test in O(1). Stored partial fragments sit also in a second treap keyed by
+    object, then their mask's bit count: masks that together fill the pixel
+    have at least `samples` bits between them, so the same-surface search
+    visits only the stored fragments of the incoming object with at least
+    `samples` - popcount(incoming) bits, and takes the first of those that
+    match in list order. `objects` must be within +-OBJECT_KEY_LIMIT (exact keys).
     """
     table = (zmin, zmax, area, mask, color, opacity, objects)
-    head = np.full(pixel_count, -1, np.int64)
-    after = np.full(len(pixels), -1, np.int64)
+    n = len(pixels)
+    root = np.full(pixel_count, -1, np.int64)
+    partial_root = np.full(pixel_count, -1, np.int64)
+    hider = np.full(pixel_count, -1, np.int64)
+    length = np.zeros(pixel_count, np.int64)
+    seq = np.arange(n + 2)  # time of (re)insertion; two hook slots at the end
+    bits = np.empty(n + 2)  # the key of the partial treap: object, then the mask's popcount
+    for i in range(n):
+        bits[i] = objects[i] * 128.0 + popcount(mask[i])
+    samples = popcount(full)
+    left, right = np.full(n + 2, -1, np.int64), np.full(n + 2, -1, np.int64)
+    partial_left, partial_right = np.full(n + 2, -1, np.int64), np.full(n + 2, -1, np.int64)
+    zkey = np.empty(n + 2)
+    zkey[:n] = zmin
+    priority = _priorities(n + 2)
+    stack, dropped = np.empty(n + 1, np.int64), np.empty(n + 1, np.int64)
     stats = np.zeros(3, np.int64)
-    for incoming in range(len(pixels)):
+    for incoming in range(n):
         p, slot = pixels[incoming], incoming
-        previous, partner = -1, head[p]
-        while partner >= 0 and not same_surface(table, partner, incoming, full):
-            previous, partner = partner, after[partner]
-        if partner >= 0:  # combine: unlink the partner, reinsert it as the merged fragment
-            if previous < 0:
-                head[p] = after[partner]
-            else:
-                after[previous] = after[partner]
-            combine(table, partner, incoming)
-            slot = partner
-            stats[MERGED] += 1
-        previous, current = -1, head[p]
-        while current >= 0 and zmin[current] <= zmin[slot]:  # sorted by zmin, ties keep order
-            previous, current = current, after[current]
-        after[slot] = current
-        if previous < 0:
-            head[p] = slot
-        else:
-            after[previous] = slot
-        length, current = 1, head[p]
-        while (
-            not (complete(mask[current], area[current], full) and opacity[current] == 1.0)
-            and after[current] >= 0
-        ):
-            current = after[current]
-            length += 1
-        dropped = after[current]  # behind a complete opaque fragment: discarded
-        after[current] = -1
-        while dropped >= 0:
+        if root[p] < 0:  # an empty pixelstruct: no search, no split
+            root[p], length[p] = slot, 1
+            if not complete(mask[slot], area[slot], full):
+                partial_root[p] = slot
+            elif opacity[slot] == 1.0:
+                hider[p] = slot
+            stats[LONGEST] = max(stats[LONGEST], 1)
+            continue
+        if partial_root[p] >= 0 and not complete(mask[incoming], area[incoming], full):
+            first_key = objects[incoming] * 128.0 + (samples - popcount(mask[incoming]))
+            below, rest = _split(
+                partial_root[p], first_key, -1, bits, seq, partial_left, partial_right
+            )
+            near, above = _split(
+                rest, objects[incoming] * 128.0 + samples, n + 2, bits, seq, partial_left,
+                partial_right,
+            )  # fmt: skip
+            partner = -1
+            for k in range(_in_order(near, partial_left, partial_right, stack, dropped)):
+                candidate = dropped[k]
+                if same_surface(table, candidate, incoming, full) and (
+                    partner < 0
+                    or _before(zkey[candidate], seq[candidate], zkey[partner], seq[partner])
+                ):
+                    partner = candidate
+            partial_root[p] = _merge(
+                _merge(below, near, priority, partial_left, partial_right), above, priority,
+                partial_left, partial_right,
+            )  # fmt: skip
+            if partner >= 0:  # combine: unlink the partner, reinsert it as the merged fragment
+                root[p] = _remove(root[p], partner, zkey, seq, priority, left, right)
+                partial_root[p] = _remove(
+                    partial_root[p], partner, bits, seq, priority, partial_left, partial_right
+                )
+                length[p] -= 1
+                combine(table, partner, incoming)
+                slot = partner
+                seq[slot], zkey[slot] = incoming, zmin[slot]
+                bits[slot] = objects[slot] * 128.0 + popcount(mask[slot])
+                stats[MERGED] += 1
+        last = hider[p]
+        if last >= 0 and zmin[slot] >= zkey[last]:  # lands behind a complete opaque fragment
             stats[DISCARDED] += 1
-            dropped = after[dropped]
-        stats[LONGEST] = max(stats[LONGEST], length)
+            stats[LONGEST] = max(stats[LONGEST], length[p])
+            continue
+        low, high = _split(root[p], zkey[slot], seq[slot], zkey, seq, left, right)
+        left[slot] = right[slot] = -1
+        root[p] = _merge(low, slot, priority, left, right)
+        length[p] += 1
+        if complete(mask[slot], area[slot], full) and opacity[slot] == 1.0:
+            hider[p] = slot
+            for k in range(_in_order(high, left, right, stack, dropped)):  # discarded
+                gone = dropped[k]
+                if not complete(mask[gone], area[gone], full):
+                    partial_root[p] = _remove(
+                        partial_root[p], gone, bits, seq, priority, partial_left, partial_right
+                    )
+                length[p] -= 1
+                stats[DISCARDED] += 1
+        else:
+            root[p] = _merge(root[p], high, priority, left, right)
+            if not complete(mask[slot], area[slot], full):
+                partial_root[p] = _insert(
+                    partial_root[p], slot, bits, seq, priority, partial_left, partial_right
+                )
+        stats[LONGEST] = max(stats[LONGEST], length[p])
+    head = np.full(pixel_count, -1, np.int64)
+    after = np.full(n, -1, np.int64)
+    for p in range(pixel_count):
+        count = _in_order(root[p], left, right, stack, dropped)
+        if count:
+            head[p] = dropped[0]
+            for k in range(count - 1):
+                after[dropped[k]] = dropped[k + 1]
     return head, after, stats
 
 
@@ -230,19 +390,50 @@ def flawed_blend(pixels, zmin, area, color, pixel_count, background, image, alph
     return discarded, int(np.isinf(depth).sum())
 
 
+@njit(cache=True)
+def nearest_fragments(pixels, zmin, polygon, pixel_count):
+    """Per pixel the least zmin and its fragment's polygon (ties: the later fragment); inf, -1."""
+    depth = np.full(pixel_count, np.inf)
+    nearest = np.full(pixel_count, -1, np.int64)
+    for i in range(len(pixels)):
+        if zmin[i] <= depth[pixels[i]]:
+            depth[pixels[i]], nearest[pixels[i]] = zmin[i], polygon[i]
+    return depth, nearest
+
+
+@njit(cache=True)
+def pixel_order(pixels, pixel_count):
+    """A stable counting sort of fragment rows by pixel: (order, sorted pixels). O(F + pixels).
+
+    Pixels are independent, so inserting pixel by pixel (each in drawing
+    order) gives the same lists; and a pixel's slots are then contiguous.
+    """
+    starts = np.zeros(pixel_count + 1, np.int64)
+    for p in pixels:
+        starts[p + 1] += 1
+    for p in range(pixel_count):
+        starts[p + 1] += starts[p]
+    order = np.empty(len(pixels), np.int64)
+    for i in range(len(pixels)):
+        order[starts[pixels[i]]] = i
+        starts[pixels[i]] += 1
+    return order, pixels[order]
+
+
 def resolve_compiled(fragments, width, height, full, samples, weights, background, mode):
     """`resolve` after validation, through the kernels above."""
     pixel_count = width * height
     pixels = fragments.y * width + fragments.x
+    order = None
+    if mode != "flawed":  # slots of one pixel side by side: the lists stay in cache
+        order, pixels = pixel_order(pixels, pixel_count)
     image = np.empty((pixel_count, 3))
     image[:] = background
     alpha = np.zeros(pixel_count)
     stats = ABufferStats(fragments_inserted=fragments.count, path="compiled")
-    table = [
-        np.array(fragments.zmin), np.array(fragments.zmax), np.array(fragments.area),
-        np.array(fragments.mask), np.array(fragments.color), np.array(fragments.opacity),
-        np.array(fragments.object),
-    ]  # fmt: skip
+    fields = (fragments.zmin, fragments.zmax, fragments.area, fragments.mask, fragments.color,
+              fragments.opacity, fragments.object)  # fmt: skip
+    table = [np.array(f) if order is None else f[order] for f in fields]
     full = np.uint64(full)
     if mode == "flawed":
         stats.fragments_discarded, stats.pixels_empty = flawed_blend(
@@ -251,7 +442,10 @@ def resolve_compiled(fragments, width, height, full, samples, weights, backgroun
         head, after = np.full(pixel_count, -1, np.int64), np.zeros(0, np.int64)
         table = [t[:0] for t in table]
     else:
-        head, after, counts = insert_fragments(pixels, *table, pixel_count, full)
+        objects = table[6]
+        if len(objects) and np.abs(objects).max() > OBJECT_KEY_LIMIT:  # keys stay exact: ranks
+            objects = np.unique(objects, return_inverse=True)[1].astype(np.int64)
+        head, after, counts = insert_fragments(pixels, *table[:6], objects, pixel_count, full)
         stats.fragments_merged = int(counts[MERGED])
         stats.fragments_discarded = int(counts[DISCARDED])
         stats.longest_list = int(counts[LONGEST])

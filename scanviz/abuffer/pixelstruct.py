@@ -48,7 +48,8 @@ class ABufferStats:
     (two fragments became one); ``fragments_discarded`` the fragments thrown
     away behind a complete opaque one (incoming or stored) -- in flawed mode,
     those failing the depth test. ``longest_list`` is the longest fragment
-    list at any time.
+    list at any time. ``fragments_object_merged`` counts the fragments that
+    ``merge="object"`` merged away before insertion (`scanviz.abuffer.merge`).
     """
 
     pixels: int = 0
@@ -59,6 +60,7 @@ class ABufferStats:
     fragments_merged: int = 0
     fragments_discarded: int = 0
     longest_list: int = 0
+    fragments_object_merged: int = 0
     mode: str = "abuffer"
     weights: str = "area"
     path: str = "reference"

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import steps
 from ..limits import check_memory
 from ..progress import progress
 from .shade import _shade_pixels
@@ -25,6 +26,7 @@ def _antialiased(
     mask,
     weights,
     *,
+    merge="none",
     subpixel_bits,
     perspective,
     tracer,
@@ -34,44 +36,32 @@ def _antialiased(
     Every fragment is shaded where it is, at the centroid of its covered
     sub-samples (the a-buffer needs every fragment's color before it knows
     which are seen). `depth` and `polygon` are those of each pixel's nearest
-    fragment.
+    fragment. `merge` is `resolve`'s (Carpenter's per-object merge, or none).
     """
     from ..abuffer import MASK_LAYOUTS, Fragments, resolve
+    from ..abuffer.kernels import nearest_fragments
 
     polygons, stats = prepared.polygons, prepared.stats
-    parts, owners = _polygon_fragments(
+    found = _polygon_fragments(
         polygons, width, height, mask, subpixel_bits, perspective, tracer, visibility
     )
-    owner = np.concatenate(owners) if owners else np.zeros(0, np.int64)
-    values = (
-        np.concatenate([f.values for f in parts])
-        if parts
-        else np.zeros((0, polygons.values.shape[1]))
-    )
+    owner = found.polygon
     if shading == "flat":
         colors = prepared.flat_colors[owner]
     elif shading == "gouraud":
-        colors = values
+        colors = found.values
     else:
-        colors = _shade_pixels(scene, shading, values)
+        colors = _shade_pixels(scene, shading, found.values)
         stats.shaded_pixels = len(owner)
-
-    def joined(field, dtype):
-        return (
-            np.concatenate([getattr(f, field) for f in parts]).astype(dtype)
-            if parts
-            else np.zeros(0, dtype)
-        )
-
     fragments = Fragments(
-        x=joined("xs", np.int64),
-        y=joined("ys", np.int64),
-        polygon=owner.astype(np.int64),
+        x=found.x,
+        y=found.y,
+        polygon=owner,
         object=prepared.polygon_object[owner],
-        mask=joined("masks", np.uint64),
-        area=joined("areas", np.float64),
-        zmin=joined("zmin", np.float64),
-        zmax=joined("zmax", np.float64),
+        mask=found.mask,
+        area=found.area,
+        zmin=found.zmin,
+        zmax=found.zmax,
         color=np.asarray(colors, dtype=np.float64).reshape(-1, 3),
         opacity=prepared.polygon_opacity[owner],
     )
@@ -83,49 +73,69 @@ def _antialiased(
         weights=weights,
         background=scene.background,
         mode="abuffer" if visibility == "abuffer" else "flawed",
+        merge=merge,
         trace=tracer,
     )
     stats.fragments, stats.path = len(owner), result.stats.path
-    depth = np.full((height, width), np.inf)
-    nearest = np.full((height, width), -1, np.int64)
-    order = np.lexsort((-fragments.zmin, fragments.x, fragments.y))  # per pixel, nearest last
-    depth[fragments.y[order], fragments.x[order]] = fragments.zmin[order]
-    nearest[fragments.y[order], fragments.x[order]] = owner[order]
-    return result.image, depth, nearest, result
+    depth, nearest = nearest_fragments(found.y * width + found.x, found.zmin, owner, width * height)
+    return result.image, depth.reshape(height, width), nearest.reshape(height, width), result
 
 
 def _polygon_fragments(polygons, width, height, mask, subpixel_bits, perspective, tracer, mode):
-    """Every polygon's fragments, in drawing order, with a progress bar for large scenes.
+    """Every polygon's fragments (`FlatFragments`), in drawing order, with a progress bar.
 
-    Storage grows polygon by polygon and is checked against the memory limit
-    as it grows; Ctrl-C stops between polygons (KeyboardInterrupt, nothing returned).
+    Untraced, `fragment_kernels.fragment_chunks` makes them compiled, a chunk
+    of polygons per call; with a tracer, or while a step of `scanviz.steps` is
+    replaced, `polygon_fragments` makes them polygon by polygon (the masks
+    traced). Both give the same fragments. Storage is checked against the
+    memory limit as it grows; Ctrl-C stops between chunks or polygons
+    (KeyboardInterrupt, nothing returned).
     """
-    from ..abuffer.fragments import polygon_fragments
+    from ..abuffer.fragment_kernels import FlatFragments, fragment_chunks
 
-    parts, owners, stored = [], [], 0
+    parts, stored = [], 0
     per_fragment = FRAGMENT_BYTES + 8 * polygons.value_count + SHADING_BYTES
     what = f"the fragments of a {width}x{height} {mode} render"
+    options = {"mask": mask, "subpixel_bits": subpixel_bits, "perspective": perspective}
+    if tracer is None and not steps.replaced():
+        chunks = fragment_chunks(polygons, width, height, what=what, **options)
+    else:
+        chunks = _traced_fragments(polygons, width, height, tracer, options)
     with progress(polygons.count, f"{mode} polygons", threshold=PROGRESS_POLYGONS) as bar:
-        for p in range(polygons.count):
-            rows = slice(polygons.offsets[p], polygons.offsets[p + 1])
-            found = polygon_fragments(
-                polygons.xy[rows],
-                polygons.z[rows],
-                polygons.inv_w[rows],
-                polygons.values[rows],
-                width,
-                height,
-                mask=mask,
-                subpixel_bits=subpixel_bits,
-                perspective=perspective,
-                trace=tracer,
-                polygon_index=p,
-            )
-            bar.update(1)
-            if found is None:
+        for done, found in chunks:
+            bar.update(done)
+            if not found.count:
                 continue
-            stored += len(found.xs)
-            check_memory(stored * per_fragment, f"{what} ({stored} fragments by polygon {p})")
+            stored += found.count
+            last = int(found.polygon[-1])
+            check_memory(stored * per_fragment, f"{what} ({stored} fragments by polygon {last})")
             parts.append(found)
-            owners.append(np.full(len(found.xs), p))
-    return parts, owners
+    return FlatFragments.join(parts, polygons.value_count)
+
+
+def _traced_fragments(polygons, width, height, tracer, options):
+    """Yield (1, FlatFragments) polygon by polygon from the reference `polygon_fragments`."""
+    from ..abuffer.fragment_kernels import FlatFragments
+    from ..abuffer.fragments import polygon_fragments
+
+    for p in range(polygons.count):
+        rows = slice(polygons.offsets[p], polygons.offsets[p + 1])
+        found = polygon_fragments(
+            polygons.xy[rows],
+            polygons.z[rows],
+            polygons.inv_w[rows],
+            polygons.values[rows],
+            width,
+            height,
+            trace=tracer,
+            polygon_index=p,
+            **options,
+        )
+        yield (
+            1,
+            (
+                FlatFragments.join([], polygons.value_count)
+                if found is None
+                else FlatFragments.of_polygon(found, p)
+            ),
+        )
