@@ -319,8 +319,9 @@ def test_issue8_d12_an_interrupt_stops_the_render_cleanly(monkeypatch):
         return None
 
     monkeypatch.setattr(scanviz.abuffer.fragments, "polygon_fragments", interrupted)
-    with pytest.raises(KeyboardInterrupt):
-        render(builtin_scene("sphere", level=1), 8, 8, visibility="abuffer")
+    with pytest.raises(KeyboardInterrupt):  # traced: polygon by polygon (compiled: in chunks,
+        # tests/test_render_abuffer.py)
+        render(builtin_scene("sphere", level=1), 8, 8, visibility="abuffer", trace=True)
     assert drawn == [0, 1, 2, 3]
 
 

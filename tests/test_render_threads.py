@@ -10,6 +10,7 @@ thread count.
 """
 
 import dataclasses
+import importlib
 
 import numba
 import numpy as np
@@ -21,6 +22,7 @@ from scanviz.scene.model import Camera, Light, Material, Mesh, Scene, SceneObjec
 from scanviz.shading import kernels as s_kernels
 from scanviz.visibility import kernels as z_kernels
 
+render_module = importlib.import_module("scanviz.pipeline.render")  # the function shadows it
 BASE = settings.default.max_examples
 THREADS = sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)})
 
@@ -60,8 +62,10 @@ def soups(draw):
 @given(scene=soups(), shading=st.sampled_from(["flat", "gouraud", "phong"]))
 def test_compiled_render_is_the_traced_one_with_any_thread_count(scene, shading):
     traced = render(scene, 21, 37, shading=shading, trace=True)
-    before, least = numba.get_num_threads(), (z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS)
-    z_kernels.PARALLEL_WORK = s_kernels.PARALLEL_POINTS = 0  # threads however small the scene
+    before = numba.get_num_threads()
+    least = (z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS, render_module.PARALLEL_PIXELS)
+    # Threads however small the scene: the bands, the shading and the image gather.
+    z_kernels.PARALLEL_WORK = s_kernels.PARALLEL_POINTS = render_module.PARALLEL_PIXELS = 0
     try:
         for threads in THREADS:
             numba.set_num_threads(threads)
@@ -75,4 +79,4 @@ def test_compiled_render_is_the_traced_one_with_any_thread_count(scene, shading)
             )
     finally:
         numba.set_num_threads(before)
-        z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS = least
+        z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS, render_module.PARALLEL_PIXELS = least

@@ -23,6 +23,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
+from numba import njit, prange
 
 from .. import steps
 from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
@@ -45,7 +46,9 @@ VISIBILITIES = (*ALGORITHMS, *ANTIALIASED)  # the opaque algorithms, then the a-
 # Bytes per pixel of the buffers a render holds at once (image, depth, ids, their copies), plus
 # 8 per attribute per pixel, plus the shading temporaries of per-pixel shading.
 PIXEL_BYTES = {"opaque": 8 * 8, "abuffer": 8 * 16, "flawed": 8 * 16}
+PARALLEL_PIXELS = 2**16  # images of more pixels are gathered by numba's threads
 SHADING_BYTES = 8 * 64  # per pixel or fragment shaded by Phong/Gooch: vectors of every light term
+MERGES = ("none", "object")  # the a-buffer's `merge` (scanviz.abuffer.merge)
 RELIGHTABLE = ("phong", "gooch")  # shaded per pixel from the kept normal, position and material
 FIXED_BEFORE_VISIBILITY = {
     "flat": "per polygon before visibility",
@@ -67,6 +70,7 @@ def render(
     edges: bool = False,
     mask: str = "8x8",
     weights: str = "area",
+    merge: str = "none",
     expansion: str = "vertex",
     trace: object = None,
 ) -> RenderResult:
@@ -100,6 +104,12 @@ def render(
         Sub-samples per pixel of the a-buffer's pixel masks.
     weights : {"area", "mask"}
         The packer weighs fragments by exact area or by mask bits.
+    merge : {"none", "object"}
+        The a-buffer's lists as Carpenter keeps them short on smooth meshes:
+        "object" merges, per pixel, the fragments of one object whose depth
+        ranges overlap or abut (masks or-ed, colors weighted by area) before
+        insertion; "none" (default) keeps one fragment per polygon
+        (`scanviz.abuffer.merge`). Only the a-buffer visibilities use it.
     expansion : {"vertex", "centroid"}
         Fast Phong's Taylor expansion point in each triangle: its first vertex
         (the dissertation) or its centroid (smaller error,
@@ -135,7 +145,8 @@ def render(
     -----
     An a-buffer render of more than `PROGRESS_POLYGONS` polygons shows a
     progress bar (tqdm); Ctrl-C or a kernel interrupt stops it between
-    polygons with KeyboardInterrupt, returning nothing. The plan's a-buffer
+    chunks of polygons (of up to 4,096; between polygons when traced) with
+    KeyboardInterrupt, returning nothing. The plan's a-buffer
     line bounds the work: at most the sum of the polygons' bounding boxes in
     fragments (`RenderStats.fragments_estimated`).
     """
@@ -154,6 +165,7 @@ def render(
     check_subpixel_bits(subpixel_bits)
     check_choice("mask", mask, ("4x4", "8x4", "8x8"))
     check_choice("weights", weights, ("area", "mask"))
+    check_choice("merge", merge, MERGES)
     check_choice("expansion", expansion, EXPANSIONS)
     if not isinstance(scene, Scene):
         raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
@@ -179,7 +191,7 @@ def render(
         depth, polygon = solved.depth, solved.polygon
     else:
         image, depth, polygon, abuffer = _antialiased(
-            scene, prepared, width, height, shading, name, mask, weights, **options
+            scene, prepared, width, height, shading, name, mask, weights, merge=merge, **options
         )
         alpha = abuffer.alpha
     _check_no_nan(name, image=image, depth=depth, alpha=alpha)
@@ -225,20 +237,31 @@ def _check_render_memory(width, height, visibility, attributes, shading, edges) 
 
 def _fragment_bound(polygons: ScreenPolygons, width: int, height: int) -> int:
     """At most this many fragments: the sum of the polygons' bounding boxes in pixels, on the raster."""
-    if not polygons.count:
-        return 0
-    starts = polygons.offsets[:-1]
-    low = np.floor(np.minimum.reduceat(polygons.xy, starts, axis=0))
-    high = np.ceil(np.maximum.reduceat(polygons.xy, starts, axis=0))
-    size = np.array([width, height])
-    extent = np.clip(high, 0, size) - np.clip(low, 0, size)
-    return int(np.prod(np.maximum(extent, 0), axis=1).sum())
+    return int(_bounding_boxes(polygons.xy, polygons.offsets, width, height))
+
+
+@njit(cache=True)
+def _bounding_boxes(xy, offsets, width, height):  # pragma: no cover - compiled
+    """Sum over polygons of (their floor..ceil bounding box clipped to the raster), in pixels."""
+    total = 0
+    for p in range(offsets.shape[0] - 1):
+        first = offsets[p]
+        x_low = x_high = xy[first, 0]
+        y_low = y_high = xy[first, 1]
+        for v in range(first + 1, offsets[p + 1]):
+            x_low, x_high = min(x_low, xy[v, 0]), max(x_high, xy[v, 0])
+            y_low, y_high = min(y_low, xy[v, 1]), max(y_high, xy[v, 1])
+        columns = min(max(np.ceil(x_high), 0.0), width) - min(max(np.floor(x_low), 0.0), width)
+        rows = min(max(np.ceil(y_high), 0.0), height) - min(max(np.floor(y_low), 0.0), height)
+        total += int(max(columns, 0.0) * max(rows, 0.0))
+    return total
 
 
 def _check_no_nan(stage: str, **arrays) -> None:
     """Last resort: a NaN that got past the arithmetic is an error naming the stage, never a pixel."""
     for name, array in arrays.items():
-        if array is not None and np.isnan(array).any():
+        # One pairwise sum first: NaN only if some entry is (depth holds +inf, never -inf).
+        if array is not None and np.isnan(array.sum()) and np.isnan(array).any():
             raise ValueError(
                 f"render: the {stage} stage produced {int(np.isnan(array).sum())} NaN values in "
                 f"{name!r}; this is a bug in scanviz, please report it with the scene"
@@ -274,14 +297,10 @@ def _opaque(
     z = result.stats
     stats.rows_scanned, stats.spans, stats.fragments = z.rows_scanned, z.spans, z.fragments
     stats.depth_passed, stats.depth_failed, stats.path = z.depth_passed, z.depth_failed, z.path
-    visible = result.polygon >= 0
-    if shading == "flat":  # one gather: row 0 of the table is the background (polygon -1)
-        image = np.vstack([scene.background, prepared.flat_colors])[result.polygon + 1]
-        return image, result
-    if shading == "gouraud":
-        image = np.empty((height, width, 3))
-        image[...] = scene.background
-        image[visible] = result.values[visible]
+    if shading in ("flat", "gouraud"):  # colors fixed before visibility: one gather
+        colors = prepared.flat_colors if shading == "flat" else np.zeros((0, 3))
+        background = np.asarray(scene.background, np.float64)
+        image = _gathered_image(result.polygon, colors, result.values, background)
         return image, result
     if shading == "fast_phong":  # per screen triangle after visibility (pipeline/fast_shade.py)
         image, stats.shaded_pixels = fast_phong_image(
@@ -295,6 +314,39 @@ def _opaque(
     if shading == "phong" and tracer is not None and tracer.wants("illumination"):
         _trace_illumination(scene, tracer, result)
     return image, result
+
+
+def _gathered_image(polygon, colors, values, background):
+    """(H, W, 3): each pixel's polygon's color (flat), else its values (Gouraud), else the background."""
+    image = np.empty((*polygon.shape, 3))
+    gather = _gather_shared if polygon.size > PARALLEL_PIXELS else _gather_here
+    gather(polygon, colors, values, background, image)
+    return image
+
+
+@njit(cache=True, parallel=True)
+def _gather_shared(polygon, colors, values, background, image):  # pragma: no cover - compiled
+    for y in prange(polygon.shape[0]):
+        _gather_row(y, polygon, colors, values, background, image)
+
+
+@njit(cache=True)
+def _gather_here(polygon, colors, values, background, image):  # pragma: no cover - compiled
+    for y in range(polygon.shape[0]):
+        _gather_row(y, polygon, colors, values, background, image)
+
+
+@njit(cache=True, inline="always")
+def _gather_row(y, polygon, colors, values, background, image):  # pragma: no cover - compiled
+    for x in range(polygon.shape[1]):
+        p = polygon[y, x]
+        for c in range(3):
+            if p < 0:
+                image[y, x, c] = background[c]
+            elif colors.shape[0]:
+                image[y, x, c] = colors[p, c]
+            else:
+                image[y, x, c] = values[y, x, c]
 
 
 def _zbuffer_path(tracer) -> str:
