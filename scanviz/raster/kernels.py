@@ -23,6 +23,13 @@ Coverage counts (`fill_polygons`, `rasterize_triangles`) are accumulated as
 O(spans + pixels), not O(covered area). `rasterize_triangles` walks a triangle
 as two trapezoids, the long edge against each short edge: exactly the two
 active edges the ET/AET has on each row of a triangle.
+
+`fill_polygons` needs no AET for a simple polygon. Counting crossings left of
+a sample (x + eps, y + eps**2) gives its winding number, the AET's running sum
+in any order; a simple polygon's is its orientation inside and 0 outside. So
+each edge can add orientation * winding at every ceil(x) it crosses, walked on
+its own, and the row sums are the coverage. `simple_orientation` proves a
+polygon simple (exactly, in int64) before it is marked so; the rest take the AET.
 """
 
 from __future__ import annotations
@@ -333,21 +340,28 @@ def prefix_sum_rows(image, first, stop):
 
 
 @njit(cache=True)
-def prefix_sum_marked(image, marked):
-    """`prefix_sum_rows` of rows whose marks lie in columns [marked[0, y], marked[1, y]).
+def sum_marks(marks, marked, image, accumulate):
+    """Write (or, if `accumulate`, add) the row prefix sums of `marks` into `image`: counts.
 
-    Left of the first mark the sum is 0; right of the last it stays at the
-    row's total, nonzero when a span reaches the right edge (its -1 at x =
-    width was dropped).
+    Row y's marks lie in columns [marked[0, y], marked[1, y]). Left of them the
+    sum is 0; right of them it stays at the row's total, nonzero when a span
+    reaches the right edge (its -1 at x = width was dropped).
     """
     for y in range(image.shape[0]):
-        row = image[y, marked[0, y] : marked[1, y]]  # a view: its indices are known >= 0
+        low, high = marked[0, y], max(marked[1, y], marked[0, y])
+        row, counts = marks[y, low:high], image[y, low:high]  # views: no index checks
         total = 0
-        for x in range(row.shape[0]):
-            total += row[x]
-            row[x] = total
-        if total:
-            image[y, marked[1, y] :] = total
+        if accumulate:
+            for x in range(row.shape[0]):
+                total += row[x]
+                counts[x] += total
+            image[y, high:] += total
+        else:
+            image[y, :low] = 0
+            for x in range(row.shape[0]):
+                total += row[x]
+                counts[x] = total
+            image[y, high:] = total
 
 
 @njit(cache=True)
@@ -360,14 +374,119 @@ def count_spans(spans, width, height):
     return image
 
 
+SIMPLE_LIMIT = 2**30  # |units| below it keep every turn (products of differences) in int64
+
+
+@njit(cache=True, inline="always")
+def turn(ax, ay, bx, by, cx, cy):
+    """Sign of the turn a -> b -> c: +1 left (counter-clockwise), -1 right, 0 straight."""
+    cross = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
+    return (cross > 0) - (cross < 0)
+
+
+@njit(cache=True)
+def simple_orientation(units, first, stop, boxes):
+    """The orientation (+1 counter-clockwise, -1 clockwise) of contour units[first:stop] if it
+    is simple, or 0.
+
+    The test is conservative: 0 also when two edges that do not follow each other
+    touch, two that do are straight on (or one has no length), or a coordinate
+    reaches `SIMPLE_LIMIT` units. A simple contour turns like its lowest vertex.
+    `boxes` (4, >= edges) int64 is work space: the edges' bounding boxes.
+    """
+    n = stop - first
+    lowest = first
+    for i in range(n):  # consecutive edges meet only at their vertex
+        a, b, c = first + i, first + (i + 1) % n, first + (i + 2) % n
+        ax, ay, bx, by = units[a, 0], units[a, 1], units[b, 0], units[b, 1]
+        if abs(ax) >= SIMPLE_LIMIT or abs(ay) >= SIMPLE_LIMIT:
+            return 0
+        if (ay, ax) < (units[lowest, 1], units[lowest, 0]):
+            lowest = a
+        if turn(ax, ay, bx, by, units[c, 0], units[c, 1]) == 0:
+            return 0
+        boxes[0, i], boxes[1, i] = min(ax, bx), max(ax, bx)
+        boxes[2, i], boxes[3, i] = min(ay, by), max(ay, by)
+    for i in range(n - 2):  # the others not at all
+        x_low, x_high, y_low, y_high = boxes[0, i], boxes[1, i], boxes[2, i], boxes[3, i]
+        for j in range(i + 2, n - (i == 0)):
+            if x_high < boxes[0, j] or boxes[1, j] < x_low:
+                continue  # the bounding boxes are apart: most pairs
+            if y_high < boxes[2, j] or boxes[3, j] < y_low:
+                continue
+            a, b, c, d = first + i, first + i + 1, first + j, first + (j + 1) % n
+            ax, ay, bx, by = units[a, 0], units[a, 1], units[b, 0], units[b, 1]
+            cx, cy, dx, dy = units[c, 0], units[c, 1], units[d, 0], units[d, 1]
+            if turn(cx, cy, dx, dy, ax, ay) * turn(cx, cy, dx, dy, bx, by) > 0:
+                continue  # a and b strictly on one side of cd
+            if turn(ax, ay, bx, by, cx, cy) * turn(ax, ay, bx, by, dx, dy) > 0:
+                continue
+            return 0
+    before, after = first + (lowest - first - 1) % n, first + (lowest - first + 1) % n
+    return turn(
+        units[before, 0],
+        units[before, 1],
+        units[lowest, 0],
+        units[lowest, 1],
+        units[after, 0],
+        units[after, 1],
+    )
+
+
+@njit(cache=True)
+def row_crossings(units, first, stop, scale, height):
+    """How many (edge, sample row) crossings contour units[first:stop] has on the raster."""
+    crossings = 0
+    for i in range(first, stop):
+        j = i + 1 if i + 1 < stop else first
+        low, high = min(units[i, 1], units[j, 1]), max(units[i, 1], units[j, 1])
+        crossings += max(min(ceil_div(high, scale), height) - max(ceil_div(low, scale), 0), 0)
+    return crossings
+
+
+@njit(cache=True)
+def mark_simple(units, first, stop, scale, orientation, marks):
+    """Add a simple contour's crossings to `marks` (height, width) edge by edge, without an AET.
+
+    A simple contour's winding number is `orientation` inside and 0 outside, so
+    with orientation * winding added at each clamped ceil(x) (dropped at x =
+    width), the row's prefix sums are its coverage, as `mark_crossings` marks it.
+    """
+    height, width = marks.shape
+    for i in range(first, stop):
+        j = i + 1 if i + 1 < stop else first
+        lower, upper = (i, j) if units[i, 1] <= units[j, 1] else (j, i)
+        row_start = max(ceil_div(units[lower, 1], scale), 0)
+        row_stop = min(ceil_div(units[upper, 1], scale), height)
+        if row_start >= row_stop:
+            continue
+        edge = (units[lower, 0], units[lower, 1], units[upper, 0], units[upper, 1])
+        q, r, q_step, r_step, den = exact_crossing(edge, scale, row_start)
+        # Downward edges have winding +1 (`edge_table`).
+        mark = np.int32(orientation if units[j, 1] < units[i, 1] else -orientation)
+        for y in range(row_start, row_stop):
+            x = min(max(q + (r > 0), 0), width)
+            if x < width:
+                marks[y, x] += mark
+            q, r = exact_step(q, r, q_step, r_step, den)
+
+
+MARK_BATCH = 2**15 - 1  # polygons marked at once: summed, their marks fit int16
+
+
 @njit(cache=True)
 def fill_polygons(units, contour_offsets, polygon_contours, scales, width, height, evenodd):
     """(height, width) int32 count of the polygons covering each sample (exact arithmetic).
 
     Polygon p has the contours contour_offsets[polygon_contours[p] : polygon_contours[p+1] + 1]
     of the packed (M, 2) int64 `units`, on a grid of scales[p] units per pixel.
+    A simple one-contour polygon is marked edge by edge (`mark_simple`) when
+    proving it simple (`simple_orientation`) costs no more than its crossings;
+    the others go through the AET (`scan_polygon`). Summed, a polygon's marks
+    at a sample are -1, 0 or 1, so those of `MARK_BATCH` polygons fit int16
+    (wrapping meanwhile or not): half the memory of int32 to mark and to sum.
     """
-    image = np.zeros((height, width), np.int32)
+    image = np.empty((height, width), np.int32)
     if image.size == 0:
         return image
     polygons = scales.shape[0]
@@ -380,17 +499,42 @@ def fill_polygons(units, contour_offsets, polygon_contours, scales, width, heigh
         bounds[p, 1] = min(ceil_div(part[:, 1].max(), scales[p]), height)
         bounds[p, 2] = max(ceil_div(part[:, 0].min(), scales[p]), 0)
         bounds[p, 3] = min(ceil_div(part[:, 0].max(), scales[p]), width - 1) + 1
-    marked = np.empty((2, height), np.int64)  # row y's marks lie in columns [marked[:, y])
-    marked[0], marked[1] = width, 0
-    # Bottom to top: polygons scanned one after the other then mark nearby rows (cache).
-    for p in np.argsort(bounds[:, 0]):
-        offsets = contour_offsets[polygon_contours[p] : polygon_contours[p + 1] + 1]
-        scan_polygon(units, offsets, scales[p], width, height, evenodd, True, np.float64, image, 0)
-        for y in range(bounds[p, 0], bounds[p, 1]):
-            marked[0, y] = min(marked[0, y], bounds[p, 2])
-            marked[1, y] = max(marked[1, y], bounds[p, 3])
-    prefix_sum_marked(image, marked)
+    order = np.argsort(bounds[:, 0])  # bottom to top: nearby rows follow each other (cache)
+    marks = np.zeros((height, width), np.int16)
+    for start in range(0, max(polygons, 1), MARK_BATCH):
+        if start:
+            marks[:] = 0
+        batch = order[start : start + MARK_BATCH]
+        mark_polygons(
+            units, contour_offsets, polygon_contours, scales, evenodd, batch, bounds, marks
+        )
+        marked = np.empty((2, height), np.int64)  # row y's marks lie in columns [marked[:, y])
+        marked[0], marked[1] = width, 0
+        for p in batch:
+            for y in range(bounds[p, 0], bounds[p, 1]):
+                marked[0, y] = min(marked[0, y], bounds[p, 2])
+                marked[1, y] = max(marked[1, y], bounds[p, 3])
+        sum_marks(marks, marked, image, start > 0)
     return image
+
+
+@njit(cache=True)
+def mark_polygons(units, contour_offsets, polygon_contours, scales, evenodd, batch, bounds, marks):
+    """`fill_polygons`: the crossings of polygons `batch`, in that order, as `marks`."""
+    height, width = marks.shape
+    sizes = contour_offsets[polygon_contours[1:]] - contour_offsets[polygon_contours[:-1]]
+    boxes = np.empty((4, sizes.max() if sizes.shape[0] else 0), np.int64)
+    for p in batch:
+        offsets = contour_offsets[polygon_contours[p] : polygon_contours[p + 1] + 1]
+        first, stop, scale = offsets[0], offsets[-1], scales[p]
+        orientation = 0
+        pairs = (stop - first) * (stop - first - 1) // 2
+        if offsets.shape[0] == 2 and pairs <= row_crossings(units, first, stop, scale, height):
+            orientation = simple_orientation(units, first, stop, boxes)
+        if orientation:
+            mark_simple(units, first, stop, scale, orientation, marks)
+        else:
+            scan_polygon(units, offsets, scale, width, height, evenodd, True, np.float64, marks, 0)
 
 
 @njit(cache=True, inline="always")

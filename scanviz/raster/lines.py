@@ -242,3 +242,138 @@ def _paint_lines(ends, mask):  # pragma: no cover - compiled; `midpoint_line` is
                 x, y = x + mx, y + my
             if 0 <= x < width and 0 <= y < height:
                 mask[y, x] = True
+
+
+def midpoint_line_window(
+    x0: int, y0: int, x1: int, y1: int, width: int, height: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The pixels of `midpoint_line` (x0, y0)-(x1, y1) on a width x height raster, walked only there.
+
+    The on-raster pixels of a midpoint line are consecutive steps of it (each
+    coordinate moves one way), so the walk starts at the first of them, with
+    its position and decision variable in closed form, and stops after the
+    last: the cost is the pixels returned, not the line's length.
+
+    Parameters
+    ----------
+    x0, y0, x1, y1 : int
+        Endpoints in pixels, within +-2**20.
+    width, height : int
+        Raster size, each at least 0.
+
+    Returns
+    -------
+    xs, ys, index : (N,) ndarray of int64
+        The pixels with 0 <= x < width and 0 <= y < height, in drawing order,
+        and the step of each along the whole line (0 at (x0, y0)): exactly
+        ``midpoint_line``'s pixels ``[index]``.
+
+    Notes
+    -----
+    After k steps the line has taken m_k diagonal steps: the minor offset
+    nearest to k minor / major, a tie to the smaller minor coordinate, that is
+    m_k = floor((2 minor k + major - 1) / (2 major)), or with ``+ major`` when
+    the minor axis points down. The doubled decision variable there is
+    d_k = major + 2 major m_k - 2 minor (k + 1). Solving m_k for the raster's
+    minor range, and the major coordinate for its major range, gives the
+    steps on the raster.
+
+    Examples
+    --------
+    >>> midpoint_line_window(-3, 0, 5, 2, 4, 3)
+    (array([0, 1, 2, 3]), array([1, 1, 1, 1]), array([3, 4, 5, 6]))
+    """
+    x0, y0, x1, y1 = (
+        _check_endpoint(name, value)
+        for name, value in (("x0", x0), ("y0", y0), ("x1", x1), ("y1", y1))
+    )
+    for name, value in (("width", width), ("height", height)):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 0:
+            raise ValueError(f"{name!r} must be an int >= 0; got {short_repr(value)}")
+    ends = np.array([[x0, y0, x1, y1]], dtype=np.int64)
+    _, xs, ys, index = line_windows(ends, int(width), int(height))
+    return xs, ys, index
+
+
+@njit(cache=True, inline="always")
+def _frame(x0, y0, x1, y1):
+    """The line in the first-octant frame: (steep, major, minor, step_x, step_y, tie_steps)."""
+    step_x = 1 if x1 >= x0 else -1
+    step_y = 1 if y1 >= y0 else -1
+    dx, dy = abs(x1 - x0), abs(y1 - y0)
+    steep = dy > dx
+    tie_steps = (step_x if steep else step_y) < 0  # a tie takes the smaller minor coordinate
+    return steep, max(dx, dy), min(dx, dy), step_x, step_y, tie_steps
+
+
+@njit(cache=True, inline="always")
+def _diagonals(k, major, minor, tie_steps):
+    """m_k: the diagonal steps among the first k (see `midpoint_line_window`)."""
+    if major == 0:
+        return 0
+    return (2 * minor * k + major - (0 if tie_steps else 1)) // (2 * major)
+
+
+@njit(cache=True, inline="always")
+def _steps_within(start, step, size, last):
+    """The steps k in [0, last] with start + step * k in [0, size): (first, stop), maybe empty."""
+    if step > 0:
+        return max(-start, 0), min(size - start, last + 1)
+    return max(start - size + 1, 0), min(start + 1, last + 1)
+
+
+@njit(cache=True, inline="always")
+def _window(x0, y0, x1, y1, width, height):
+    """The steps [first, stop) of the line from (x0, y0) to (x1, y1) on the raster."""
+    steep, major, minor, step_x, step_y, tie_steps = _frame(x0, y0, x1, y1)
+    if steep:
+        first, stop = _steps_within(y0, step_y, height, major)
+        low, high = _steps_within(x0, step_x, width, minor)  # diagonal counts m_k on it
+    else:
+        first, stop = _steps_within(x0, step_x, width, major)
+        low, high = _steps_within(y0, step_y, height, minor)
+    if low >= high:
+        return 0, 0
+    if minor > 0:  # invert m_k: m_k >= low and m_k <= high - 1
+        c = major - (0 if tie_steps else 1)
+        first = max(first, -((c - 2 * major * low) // (2 * minor)))
+        stop = min(stop, (2 * major * high - c - 1) // (2 * minor) + 1)
+    return first, max(stop, first)
+
+
+@njit(cache=True)
+def line_windows(ends, width, height):
+    """`midpoint_line_window` of every row (x0, y0, x1, y1) of `ends` (K, 4) int64.
+
+    Returns (offsets, xs, ys, index): line i's pixels are [offsets[i], offsets[i + 1]).
+    """
+    count = ends.shape[0]
+    firsts = np.empty(count, np.int64)
+    offsets = np.zeros(count + 1, np.int64)
+    for i in range(count):
+        first, stop = _window(ends[i, 0], ends[i, 1], ends[i, 2], ends[i, 3], width, height)
+        firsts[i] = first
+        offsets[i + 1] = offsets[i] + stop - first
+    xs = np.empty(offsets[count], np.int64)
+    ys = np.empty(offsets[count], np.int64)
+    index = np.empty(offsets[count], np.int64)
+    for i in range(count):
+        x0, y0, x1, y1 = ends[i, 0], ends[i, 1], ends[i, 2], ends[i, 3]
+        steep, major, minor, step_x, step_y, tie_steps = _frame(x0, y0, x1, y1)
+        k = firsts[i]
+        m = _diagonals(k, major, minor, tie_steps)
+        d = major + 2 * major * m - 2 * minor * (k + 1)  # the decision at step k
+        if steep:
+            x, y = x0 + step_x * m, y0 + step_y * k
+        else:
+            x, y = x0 + step_x * k, y0 + step_y * m
+        for j in range(offsets[i], offsets[i + 1]):
+            xs[j], ys[j], index[j] = x, y, k
+            diagonal = d < 0 or (tie_steps and d == 0)
+            d += 2 * (major - minor) if diagonal else -2 * minor
+            k += 1
+            if steep:
+                x, y = x + (step_x if diagonal else 0), y + step_y
+            else:
+                x, y = x + step_x, y + (step_y if diagonal else 0)
+    return offsets, xs, ys, index
