@@ -433,7 +433,8 @@ def main(root: Path) -> None:
         # kernel loads (or compiles) and caches happen now, not inside student code, where
         # they would look like file access or patching.
         exercise = get(item["id"])
-        run_case(exercise, exercise.reference, exercise.public[0])
+        for case in exercise.public:  # every public case: each may take other kernels
+            run_case(exercise, exercise.reference, case)
     _limit(request["limits"])
     guard = Guard(Path.cwd())
     send({"ready": True})

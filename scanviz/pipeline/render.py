@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+import numba
 import numpy as np
 from numba import njit, prange
 
@@ -319,7 +320,8 @@ def _opaque(
 def _gathered_image(polygon, colors, values, background):
     """(H, W, 3): each pixel's polygon's color (flat), else its values (Gouraud), else the background."""
     image = np.empty((*polygon.shape, 3))
-    gather = _gather_shared if polygon.size > PARALLEL_PIXELS else _gather_here
+    shared = polygon.size > PARALLEL_PIXELS and numba.get_num_threads() > 1
+    gather = _gather_shared if shared else _gather_here
     gather(polygon, colors, values, background, image)
     return image
 

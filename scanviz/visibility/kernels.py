@@ -353,7 +353,8 @@ def _polygon_rows(units, positions, z, offsets, scale, width, height):
     first_row = np.zeros(count, np.int64)
     stop_row = np.zeros(count, np.int64)
     skipped = np.ones(count, np.bool_)
-    rows = _polygon_rows_shared if count > PARALLEL_WORK // 8 else _polygon_rows_here
+    shared = count > PARALLEL_WORK // 8 and numba.get_num_threads() > 1
+    rows = _polygon_rows_shared if shared else _polygon_rows_here
     rows(units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped)
     return planes, first_row, stop_row, skipped
 
