@@ -307,24 +307,6 @@ def test_issue8_d12_plan_estimates_the_work_and_large_renders_show_progress(monk
     assert "abuffer polygons" in capsys.readouterr().err
 
 
-def test_issue8_d12_an_interrupt_stops_the_render_cleanly(monkeypatch):
-    import scanviz.abuffer.fragments
-
-    drawn = []
-
-    def interrupted(*args, polygon_index, **kwargs):
-        drawn.append(polygon_index)
-        if polygon_index == 3:
-            raise KeyboardInterrupt
-        return None
-
-    monkeypatch.setattr(scanviz.abuffer.fragments, "polygon_fragments", interrupted)
-    with pytest.raises(KeyboardInterrupt):  # traced: polygon by polygon (compiled: in chunks,
-        # tests/test_render_abuffer.py)
-        render(builtin_scene("sphere", level=1), 8, 8, visibility="abuffer", trace=True)
-    assert drawn == [0, 1, 2, 3]
-
-
 TINY_SIZES = [(1, 1), (3, 2), (17, 9), (0, 0), (4, 0)]
 VARIANTS = [(None, False), (True, True), (False, False)]  # (cull, edges), cycled through the modes
 # Built-ins with their parameters made small, so every mode runs in seconds; the a-buffer costs
