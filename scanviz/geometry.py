@@ -157,6 +157,16 @@ def _faults(raw: np.ndarray) -> np.ndarray:
     return np.full(raw.shape, _NOT_REAL)
 
 
+def _within_limit(raw: np.ndarray) -> bool:
+    """True when numeric `raw` is all finite and within +-2**20: two reductions, no codes.
+
+    A NaN makes min and max NaN, which compares False; ints compare exactly.
+    """
+    if raw.dtype.kind not in _NUMERIC_KINDS or not raw.size:
+        return False
+    return bool(raw.min() >= -COORD_LIMIT) and bool(raw.max() <= COORD_LIMIT)
+
+
 def as_coordinates(value: object, name: str, shape: tuple[int | str, ...]) -> np.ndarray:
     """`value` as a new float64 array of `shape` whose every coordinate is valid (DESIGN §6).
 
@@ -204,6 +214,8 @@ def as_coordinates(value: object, name: str, shape: tuple[int | str, ...]) -> np
             f"{name} must be {_shape_text(shape)} of numbers (real: int or float); "
             f"got dtype {raw.dtype}"
         )
+    if _within_limit(raw):
+        return raw.astype(np.float64)
     codes = _faults(raw)
     bad = np.flatnonzero(codes)
     if bad.size:

@@ -1,11 +1,14 @@
 """Polygon: construction, read-only contours, and validation messages (DESIGN §6)."""
 
 import math
+from unittest import mock
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from scanviz import Polygon
+from scanviz import Polygon, geometry
 from scanviz.conventions import COORD_LIMIT
 
 TRIANGLE = [(0, 0), (4, 0), (4, 3)]
@@ -142,3 +145,34 @@ def test_issue8_fuzz_nesting_deeper_than_numpy_holds_is_a_shape_error():
             value = [value]
         with pytest.raises(ValueError, match=r"contour 0 must be an \(N, 2\) array; .*vertex 0"):
             Polygon(value)
+
+
+EDGE_VALUES = [0.0, -0.0, 1.5, -7.0, COORD_LIMIT, -COORD_LIMIT, COORD_LIMIT + 1, -COORD_LIMIT - 0.5]
+EDGE_VALUES += [math.nan, math.inf, -math.inf, 1e300]
+
+
+def _checked(array) -> tuple:
+    try:
+        result = geometry.as_coordinates(array, "contour 0", ("N", 2))
+    except (TypeError, ValueError) as error:
+        return type(error), str(error)
+    assert result is not array and result.flags.writeable  # always a new, writable copy
+    return result.dtype, result.tolist()
+
+
+@settings(max_examples=settings.default.max_examples)
+@given(
+    values=st.lists(st.sampled_from(EDGE_VALUES), min_size=6, max_size=6),
+    dtype=st.sampled_from(["float64", "float32", "int64", "int32", "uint64", "int16", "object"]),
+)
+def test_fast_check_returns_and_raises_as_the_detailed_check(values, dtype):
+    # `_within_limit` lets valid input skip the per-coordinate fault codes: same result, same errors.
+    array = np.array(values, dtype=object).reshape(3, 2)
+    if dtype != "object":
+        with np.errstate(invalid="ignore", over="ignore"):
+            array = np.array(values).reshape(3, 2).astype(dtype)
+        if dtype[0] in "iu" and not np.array_equal(array, np.reshape(values, (3, 2))):
+            return  # not values of that integer dtype
+    fast = _checked(array)
+    with mock.patch.object(geometry, "_within_limit", lambda raw: False):
+        assert _checked(array) == fast

@@ -208,15 +208,6 @@ def _as_batch(polygons: object) -> np.ndarray | None:
     return as_coordinates(raw, "'polygons'", ("P", "N", 2))
 
 
-def _three_distinct(batch: np.ndarray) -> np.ndarray:
-    """(T,) bool: which items of a (T, N, 2) batch have at least 3 distinct vertices."""
-    x, y = batch[..., 0], batch[..., 1]
-    differs = (x != x[:, :1]) | (y != y[:, :1])  # from vertex 0
-    second = differs.argmax(axis=1)[:, None]  # the first vertex unlike vertex 0, if any
-    x_second, y_second = np.take_along_axis(x, second, 1), np.take_along_axis(y, second, 1)
-    return (differs & ((x != x_second) | (y != y_second))).any(axis=1)
-
-
 def _snap_batch(batch: np.ndarray, sample: str, bits: int | None) -> tuple[np.ndarray, int] | None:
     """(units, scale) of a (T, N, 2) batch snapped as `fixed.snap` does; None if int64 cannot hold it."""
     if bits is None:
@@ -314,7 +305,7 @@ def fill_polygons(
     batch = _as_batch(polygons)
     if batch is not None:  # P one-contour polygons: validate at once
         check_memory(_batch_bytes(batch, width, height), what)
-        few = np.flatnonzero(~_three_distinct(batch))
+        few = np.flatnonzero(~kernels.three_distinct(batch))
         if few.size:
             distinct = len(np.unique(batch[few[0]], axis=0))
             raise ValueError(
@@ -420,7 +411,7 @@ def rasterize_triangles(
     if snapped is None:  # a grid finer than int64 takes: the reference, triangle by triangle
         spans = [
             scan_reference(snap(Polygon(triangle), sample, None), width, height)[0]
-            for triangle in vertices[_three_distinct(vertices)]  # the others have no area
+            for triangle in vertices[kernels.three_distinct(vertices)]  # the others have no area
         ]
         return kernels.count_spans(
             np.concatenate(spans + [np.zeros((0, 3), np.int64)]), width, height

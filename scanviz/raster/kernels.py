@@ -28,8 +28,9 @@ active edges the ET/AET has on each row of a triangle.
 a sample (x + eps, y + eps**2) gives its winding number, the AET's running sum
 in any order; a simple polygon's is its orientation inside and 0 outside. So
 each edge can add orientation * winding at every ceil(x) it crosses, walked on
-its own, and the row sums are the coverage. `simple_orientation` proves a
-polygon simple (exactly, in int64) before it is marked so; the rest take the AET.
+its own, and the row sums are the coverage. `star_orientation` (O(n)) or
+`simple_orientation` (O(n**2)) proves a polygon simple (exactly, in int64)
+before it is marked so; the rest take the AET.
 """
 
 from __future__ import annotations
@@ -374,6 +375,24 @@ def count_spans(spans, width, height):
     return image
 
 
+@njit(cache=True)
+def three_distinct(batch):
+    """(T,) bool: which items of a (T, N, 2) float64 batch have at least 3 distinct vertices."""
+    found = np.zeros(batch.shape[0], np.bool_)
+    for t in range(batch.shape[0]):
+        second = 0  # the first vertex unlike vertex 0, once found
+        for i in range(1, batch.shape[1]):
+            x, y = batch[t, i, 0], batch[t, i, 1]
+            if x == batch[t, 0, 0] and y == batch[t, 0, 1]:
+                continue
+            if second == 0:
+                second = i
+            elif x != batch[t, second, 0] or y != batch[t, second, 1]:
+                found[t] = True
+                break
+    return found
+
+
 SIMPLE_LIMIT = 2**30  # |units| below it keep every turn (products of differences) in int64
 
 
@@ -433,6 +452,71 @@ def simple_orientation(units, first, stop, boxes):
     )
 
 
+STAR_TRIES = 8  # centres tried by `star_orientation`
+
+
+@njit(cache=True)
+def star_orientation(units, first, stop):
+    """The orientation (+1 counter-clockwise, -1 clockwise) of contour units[first:stop] if it
+    is proved star-shaped, or 0.
+
+    Seen from a point c, the vertices of a star-shaped contour turn strictly one
+    way at every edge (c is on no edge's line) and go round c once: then every
+    ray from c meets the contour once, so it is simple. Strict turns make the
+    angle of the vertex from c change by less than a half turn per edge, so the
+    edges running up across the horizontal line through c (y_i < c_y <= y_i+1)
+    are where it passes angle 0 counter-clockwise, or, running down across it,
+    clockwise. Each test is exact, in int64; the grid points c tried are only a
+    guess: the centre of the bounding box, then up to `STAR_TRIES` - 1 steps
+    that move c just across the line of the edge it is furthest on the wrong
+    side of. A sufficient test in O(n) a try: 0 says only that it did not prove
+    the contour simple (or that a coordinate reaches `SIMPLE_LIMIT` units).
+    """
+    x_low, x_high = units[first:stop, 0].min(), units[first:stop, 0].max()
+    y_low, y_high = units[first:stop, 1].min(), units[first:stop, 1].max()
+    if max(-x_low, x_high, -y_low, y_high) >= SIMPLE_LIMIT:
+        return 0
+    n = stop - first
+    centre_x, centre_y = (x_low + x_high) / 2, (y_low + y_high) / 2
+    turning = 0  # the orientation to prove, once guessed
+    for _ in range(STAR_TRIES):
+        # A grid point in the box: a simple contour's kernel lies in it, and turns stay in int64.
+        cx = min(max(np.int64(round(centre_x)), x_low), x_high)
+        cy = min(max(np.int64(round(centre_y)), y_low), y_high)
+        left = right = up = down = 0
+        worst, worst_edge = 0.0, -1
+        for i in range(first, stop):
+            j = i + 1 if i + 1 < stop else first
+            ax, ay, bx, by = units[i, 0] - cx, units[i, 1] - cy, units[j, 0] - cx, units[j, 1] - cy
+            cross = ax * by - ay * bx  # |edge| times how far c is left of it
+            left += cross > 0
+            right += cross < 0
+            up += (ay < 0) & (by >= 0)
+            down += (ay >= 0) & (by < 0)
+            if turning and cross * turning <= 0:
+                length = math.hypot(bx - ax, by - ay)
+                if length == 0:
+                    return 0  # a repeated vertex: c is on that edge, wherever it is
+                wrong = -cross * turning / length
+                if wrong >= worst:
+                    worst, worst_edge = wrong, i
+        if left == n:
+            return 1 if up == 1 else 0  # round c more than once: not simple
+        if right == n:
+            return -1 if down == 1 else 0
+        if not turning:
+            turning = 1 if left >= right else -1
+            continue  # the same c again, now finding the edge to step across
+        if worst_edge < 0:
+            return 0
+        j = worst_edge + 1 if worst_edge + 1 < stop else first
+        edge_x = units[j, 0] - units[worst_edge, 0]
+        edge_y = units[j, 1] - units[worst_edge, 1]
+        step = turning * (worst + 1) / math.hypot(edge_x, edge_y)  # one unit past the line
+        centre_x, centre_y = cx - edge_y * step, cy + edge_x * step
+    return 0
+
+
 @njit(cache=True)
 def row_crossings(units, first, stop, scale, height):
     """How many (edge, sample row) crossings contour units[first:stop] has on the raster."""
@@ -472,6 +556,7 @@ def mark_simple(units, first, stop, scale, orientation, marks):
 
 
 MARK_BATCH = 2**15 - 1  # polygons marked at once: summed, their marks fit int16
+BYTE_BATCH = 2**7 - 1  # so few polygons mark int8: half the memory again
 
 
 @njit(cache=True)
@@ -481,10 +566,12 @@ def fill_polygons(units, contour_offsets, polygon_contours, scales, width, heigh
     Polygon p has the contours contour_offsets[polygon_contours[p] : polygon_contours[p+1] + 1]
     of the packed (M, 2) int64 `units`, on a grid of scales[p] units per pixel.
     A simple one-contour polygon is marked edge by edge (`mark_simple`) when
-    proving it simple (`simple_orientation`) costs no more than its crossings;
+    it is proved simple: star-shaped (`star_orientation`), or, when that
+    proof costs no more than its crossings, by `simple_orientation`;
     the others go through the AET (`scan_polygon`). Summed, a polygon's marks
     at a sample are -1, 0 or 1, so those of `MARK_BATCH` polygons fit int16
-    (wrapping meanwhile or not): half the memory of int32 to mark and to sum.
+    (wrapping meanwhile or not): half the memory of int32 to mark and to sum;
+    up to `BYTE_BATCH` polygons fit int8.
     """
     image = np.empty((height, width), np.int32)
     if image.size == 0:
@@ -500,11 +587,24 @@ def fill_polygons(units, contour_offsets, polygon_contours, scales, width, heigh
         bounds[p, 2] = max(ceil_div(part[:, 0].min(), scales[p]), 0)
         bounds[p, 3] = min(ceil_div(part[:, 0].max(), scales[p]), width - 1) + 1
     order = np.argsort(bounds[:, 0])  # bottom to top: nearby rows follow each other (cache)
-    marks = np.zeros((height, width), np.int16)
-    for start in range(0, max(polygons, 1), MARK_BATCH):
+    packed = units, contour_offsets, polygon_contours, scales, evenodd, order, bounds
+    if polygons <= BYTE_BATCH:
+        count_batches(*packed, np.zeros((height, width), np.int8), BYTE_BATCH, image)
+    else:
+        count_batches(*packed, np.zeros((height, width), np.int16), MARK_BATCH, image)
+    return image
+
+
+@njit(cache=True)
+def count_batches(
+    units, contour_offsets, polygon_contours, scales, evenodd, order, bounds, marks, size, image
+):
+    """`fill_polygons`: mark the polygons `order`, `size` at a time, in `marks`; sum into `image`."""
+    height, width = marks.shape
+    for start in range(0, max(order.shape[0], 1), size):
         if start:
             marks[:] = 0
-        batch = order[start : start + MARK_BATCH]
+        batch = order[start : start + size]
         mark_polygons(
             units, contour_offsets, polygon_contours, scales, evenodd, batch, bounds, marks
         )
@@ -515,7 +615,6 @@ def fill_polygons(units, contour_offsets, polygon_contours, scales, width, heigh
                 marked[0, y] = min(marked[0, y], bounds[p, 2])
                 marked[1, y] = max(marked[1, y], bounds[p, 3])
         sum_marks(marks, marked, image, start > 0)
-    return image
 
 
 @njit(cache=True)
@@ -528,9 +627,11 @@ def mark_polygons(units, contour_offsets, polygon_contours, scales, evenodd, bat
         offsets = contour_offsets[polygon_contours[p] : polygon_contours[p + 1] + 1]
         first, stop, scale = offsets[0], offsets[-1], scales[p]
         orientation = 0
-        pairs = (stop - first) * (stop - first - 1) // 2
-        if offsets.shape[0] == 2 and pairs <= row_crossings(units, first, stop, scale, height):
-            orientation = simple_orientation(units, first, stop, boxes)
+        if offsets.shape[0] == 2:
+            orientation = star_orientation(units, first, stop)
+            pairs = (stop - first) * (stop - first - 1) // 2
+            if not orientation and pairs <= row_crossings(units, first, stop, scale, height):
+                orientation = simple_orientation(units, first, stop, boxes)
         if orientation:
             mark_simple(units, first, stop, scale, orientation, marks)
         else:

@@ -1,11 +1,12 @@
 """`fill_polygons`' edge-by-edge path for simple polygons against the AET and the reference.
 
-A polygon proven simple (`simple_orientation`) is marked edge by edge without
-an active edge table (`mark_simple`); the others still go through the AET.
-Both must give the coverage the traced reference gives: random stars (simple,
-either orientation, partly off the raster), random self-intersecting
-polygons, degenerate ones (repeated vertices, touching edges, collinear
-runs), and more polygons on one sample than one batch of int16 marks holds.
+A polygon proven simple (`star_orientation`, else `simple_orientation`) is
+marked edge by edge without an active edge table (`mark_simple`); the others
+still go through the AET. Both must give the coverage the traced reference
+gives: random stars (simple, either orientation, partly off the raster),
+random self-intersecting polygons, degenerate ones (repeated vertices,
+touching edges, collinear runs, contours winding twice round their centre),
+and more polygons on one sample than one batch of int8 or int16 marks holds.
 """
 
 import numpy as np
@@ -58,6 +59,19 @@ def orientation(polygon, sample="corner", bits=8) -> int:
     return kernels.simple_orientation(np.array(s.units), 0, len(s.units), boxes)
 
 
+def star_orientation(polygon, sample="corner", bits=8) -> int:
+    s = snap(Polygon(polygon), sample, bits)
+    return kernels.star_orientation(np.array(s.units), 0, len(s.units))
+
+
+def assert_proof_sound(vertices, turn) -> None:
+    """A nonzero orientation proves the snapped contour simple, turning that way (shapely)."""
+    if turn:
+        ring = LinearRing(vertices)
+        assert ring.is_simple
+        assert turn == (1 if ring.is_ccw else -1)
+
+
 @st.composite
 def stars(draw) -> np.ndarray:
     """A star: sorted angles, radii alternating, center anywhere near the raster; maybe clockwise."""
@@ -105,11 +119,57 @@ def test_random_polygons_equal_the_reference_and_simple_means_simple(vertices, r
     np.testing.assert_array_equal(
         image, mask_sum([vertices], WIDTH, HEIGHT, rule=rule, subpixel_bits=0)
     )
-    turn = orientation(vertices, bits=0)
-    if turn:  # proven simple: so it is, and it turns that way
-        ring = LinearRing(vertices)
-        assert ring.is_simple
-        assert turn == (1 if ring.is_ccw else -1)
+    assert_proof_sound(vertices, orientation(vertices, bits=0))
+    assert_proof_sound(vertices, star_orientation(vertices, bits=0))
+
+
+@settings(max_examples=2 * settings.default.max_examples)
+@given(drawn=stars(), bits=st.sampled_from([0, 4, 8]))
+def test_star_proof_is_sound_and_agrees_with_the_pairwise_proof(drawn, bits):
+    if len(np.unique(drawn, axis=0)) < 3:
+        return
+    snapped = snap(Polygon(drawn), "corner", bits).pixel_vertices()
+    star, pairwise = star_orientation(drawn, bits=bits), orientation(drawn, bits=bits)
+    assert_proof_sound(snapped, star)
+    if star and pairwise:
+        assert star == pairwise
+    alone = simple_marks_sum(drawn, WIDTH, HEIGHT, "corner", bits)
+    if star and alone is None:  # proven simple by the star test only: mark it as such
+        s = snap(Polygon(drawn), "corner", bits)
+        marks = np.zeros((HEIGHT, WIDTH), np.int8)
+        kernels.mark_simple(np.array(s.units), 0, len(s.units), s.scale, star, marks)
+        expected = aet_marks_sum([drawn], WIDTH, HEIGHT, "corner", "nonzero", bits)
+        np.testing.assert_array_equal(np.cumsum(marks, axis=1, dtype=np.int32), expected)
+
+
+def regular(points, step=1, radius=10.0, center=(16.0, 16.0)) -> list:
+    """Vertices k * step of a regular `points`-gon: a star polygon {points/step}."""
+    angles = 2 * np.pi * step * np.arange(points) / points
+    return [(center[0] + radius * np.cos(a), center[1] + radius * np.sin(a)) for a in angles]
+
+
+@pytest.mark.parametrize(
+    "vertices, star",
+    [
+        (regular(7), 1),  # convex: star-shaped round any inner point
+        (regular(7)[::-1], -1),
+        (regular(5, 2), 0),  # a pentagram winds twice round its centre: not simple
+        (regular(7, 3)[::-1], 0),
+        ([(2, 2), (11, 2), (20, 2), (20, 18), (2, 18)], 1),  # straight on: still simple
+        ([(2, 2), (30, 2), (30, 4), (16, 4), (16, 30), (14, 30), (14, 4), (2, 4)], 1),  # a T
+        ([(0, 0), (30, 0), (30, 30), (20, 30), (20, 5), (10, 5), (10, 30), (0, 30)], 0),  # a U
+        ([(0, 0), (20, 0), (20, 20), (10, 10), (0, 20)], 1),  # a vertex at the box centre
+        ([(0, 0), (20, 0), (20, 20), (10, 14), (0, 20)], 1),  # a notch, the centre still seen
+        ([(0, 0), (20, 0), (20, 20), (10, 20), (10, 20), (0, 20)], 0),  # a repeated vertex
+    ],
+)
+def test_star_proof_examples(vertices, star):
+    assert star_orientation(vertices, bits=0) == star
+    assert_proof_sound(vertices, star)
+    for rule in RULES:
+        image = fill_polygons([vertices], WIDTH, HEIGHT, rule=rule, subpixel_bits=0)
+        expected = mask_sum([vertices], WIDTH, HEIGHT, rule=rule, subpixel_bits=0)
+        np.testing.assert_array_equal(image, expected)
 
 
 @pytest.mark.parametrize(
@@ -125,6 +185,7 @@ def test_random_polygons_equal_the_reference_and_simple_means_simple(vertices, r
 )
 def test_degenerate_polygons_take_the_aet_and_equal_the_reference(vertices):
     assert orientation(vertices, bits=0) == 0
+    assert_proof_sound(vertices, star_orientation(vertices, bits=0))
     for rule in RULES:
         image = fill_polygons([vertices], WIDTH, HEIGHT, rule=rule)
         np.testing.assert_array_equal(image, mask_sum([vertices], WIDTH, HEIGHT, rule=rule))
@@ -142,7 +203,10 @@ def test_simple_polygons_are_proven_simple_both_ways_round():
     )
 
 
-@pytest.mark.parametrize("count", [2**15 - 1, 2**15 + 3])  # one batch of int16 marks, then two
+@pytest.mark.parametrize(
+    "count",
+    [2**7 - 1, 2**7, 2**15 - 1, 2**15 + 3],  # all in int8 marks, in int16, one batch, then two
+)
 def test_many_polygons_on_one_sample_keep_exact_counts(count):
     rng = np.random.default_rng(5)
     corners = rng.uniform(2.5, 5.9, (count, 1, 2))

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from scanviz import Polygon, fill_polygons, rasterize_triangles, scan_convert
 from scanviz.catalog import SHAPES
 from scanviz.conventions import ARITHMETICS, COORD_LIMIT, RULES, SAMPLE_MODES
+from scanviz.raster import kernels
 from scanviz.raster.api import scan_snapped
 from scanviz.raster.fixed import snap
 from scanviz.raster.kernels import mul_divmod
@@ -399,3 +400,14 @@ def test_issue8_d9_shapes_and_items_are_checked():
         fill_polygons([1, 2, 3], 8, 8)
     with pytest.raises(TypeError, match=r"'polygons'\[0\]: 'contours' must be"):
         fill_polygons([None], 8, 8)
+
+
+@settings(max_examples=settings.default.max_examples)
+@given(
+    values=st.lists(st.sampled_from([0.0, -0.0, 1.0, 2.5]), min_size=2 * 4 * 5, max_size=2 * 4 * 5),
+    size=st.integers(3, 5),
+)
+def test_three_distinct_counts_as_unique(values, size):
+    batch = np.array(values).reshape(4, 5, 2)[:, :size].copy()
+    expected = [len(np.unique(item, axis=0)) >= 3 for item in batch]
+    assert kernels.three_distinct(batch).tolist() == expected
