@@ -118,27 +118,29 @@ def _fixed(offset):
 
 
 @njit(cache=True)
-def _add_piece(row, cover, xa, xb, t0, t1, y, sign, width):
+def _add_piece(row, cover, xa, xb, t0, t1, y, sign, width, col0):
     """Add sign * F_E(c) of an edge piece from (xa, t0) to (xb, t1) in row y; returns the columns visited.
 
     The columns the piece crosses get F in closed form in `row`; the columns
     left of its first column (clamped to 0..width) get the full height, as a
-    fixed-point step at that column in `cover`.
+    fixed-point step at that column in `cover`. `row` and `cover` start at
+    column `col0` (the columns left of it are not kept; the work counts them).
     """
     h = t1 - t0
     lo, hi = min(xa, xb), max(xa, xb)
     first = min(max(int(np.floor(lo)), 0), width)
-    cover[first] -= sign * (_fixed(t1 - y) - _fixed(t0 - y))  # from `first` on, not left of it
+    kept = max(first, col0)  # a step left of col0 reaches every kept column: put it at col0
+    cover[kept - col0] -= sign * (_fixed(t1 - y) - _fixed(t0 - y))  # from `first` on
     last = min(int(np.floor(hi)), width - 1)
     span = hi - lo
-    for c in range(first, last + 1):
+    for c in range(kept, last + 1):
         if span == 0.0:
-            row[c] += sign * h * (lo - c)
+            row[c - col0] += sign * h * (lo - c)
             continue
         u0, u1 = max(lo, float(c)), min(hi, c + 1.0)
         inside_time = h * (u1 - u0) / span
         right_time = h * (hi - u1) / span
-        row[c] += sign * (inside_time * (0.5 * (u0 + u1) - c) + right_time)
+        row[c - col0] += sign * (inside_time * (0.5 * (u0 + u1) - c) + right_time)
     return max(last - first + 1, 0) + 1
 
 
@@ -193,9 +195,12 @@ SINCE, HEIGHT = 0, 1
 
 @njit(cache=True)
 def _sweep_row(
-    row, cover, ax, ay, bx, by, winding, edges, y, width, evenodd, state, marks, counters, max_work
-):
-    """Add row y's coverage by its `edges` to `row`; returns the work (stops past `max_work`).
+    row, cover, ax, ay, bx, by, winding, edges, y, width, evenodd, state, marks, counters, max_work,
+    col0,
+):  # fmt: skip
+    """Add row y's coverage by its `edges` to `row` (columns col0..width); returns the work.
+
+    The sweep stops past `max_work`.
 
     The steps are inner functions sharing the row's arrays: numba inlines
     them, where a call passing the arrays would count references each time.
@@ -216,7 +221,7 @@ def _sweep_row(
                 _x_at(ax[e], ay[e], bx[e], by[e], since[e]),
                 _x_at(ax[e], ay[e], bx[e], by[e], t),
             )
-            work = _add_piece(row, cover, xa, xb, since[e], t, y, side[e], width)
+            work = _add_piece(row, cover, xa, xb, since[e], t, y, side[e], width, col0)
         side[e], since[e] = new, t
         return work
 
@@ -359,12 +364,12 @@ def _sweep_row(
     for e in order[:n]:
         work += set_side(e, 0, top)
     covered = 0
-    for c in range(width):
+    for c in range(width - col0):
         covered += cover[c]
         cover[c] = 0
         if covered != 0:
             row[c] += covered * 2.0**-FIXED_BITS
-    cover[width] = 0
+    cover[width - col0] = 0
     return work
 
 
@@ -389,17 +394,21 @@ def _update_active(ay, by, active, n_active, next_edge, y):
 
 
 @njit(cache=True)
-def _coverage_kernel(ax, ay, bx, by, winding, width, height, evenodd, row0, row1, max_work):
-    """Exact coverage of rows [row0, row1): ((row1 - row0, width) float64 array, work).
+def _coverage_kernel(
+    ax, ay, bx, by, winding, width, height, evenodd, row0, row1, max_work, col0=0
+):  # fmt: skip
+    """Exact coverage of rows [row0, row1): ((row1 - row0, width - col0) float64 array, work).
 
     Each row is swept on its own, from the edges that reach it (in the order
     of the edge arrays), so a row's areas do not depend on the other rows.
     Memory is linear in the edges. Past `max_work` steps the kernel stops and
-    returns the work reached (the caller refuses the polygon).
+    returns the work reached (the caller refuses the polygon). Columns from
+    `col0` on are kept, their areas and the work the same as with col0 = 0:
+    a window's left end, so that small polygons cost their size.
     """
     count = len(ay)
-    image = np.zeros((max(row1 - row0, 0), width))
-    cover = np.zeros(width + 1, np.int64)
+    image = np.zeros((max(row1 - row0, 0), width - col0))
+    cover = np.zeros(width - col0 + 1, np.int64)
     active = np.empty(count, np.int64)
     state = np.empty((STATE_ROWS, count), np.int64)
     state[SIDE], state[WHERE] = 0, -1
@@ -412,7 +421,7 @@ def _coverage_kernel(ax, ay, bx, by, winding, width, height, evenodd, row0, row1
         if n_active:
             work += _sweep_row(
                 image[y - row0], cover, ax, ay, bx, by, winding, active[:n_active], y, width,
-                evenodd, state, marks, counters, max_work - work,
+                evenodd, state, marks, counters, max_work - work, col0,
             )  # fmt: skip
             if work > max_work:
                 return image, work

@@ -2,16 +2,18 @@
 
 `polygon_fragments` makes one polygon's fragments with numpy, a few
 milliseconds of Python a polygon. `chunk_fragments` makes the fragments of a
-run of polygons in one numba call, into flat arrays in drawing order, each
-polygon's fragments sorted by y then x, equal to the reference's:
+run of polygons in two compiled passes (shared among numba's threads), into
+flat arrays in drawing order, each polygon's fragments sorted by y then x,
+equal to the reference's:
 
 * masks: the scan converter's own compiled kernel (`raster.kernels.scan_polygon`)
   on the polygon snapped and scaled by (cols, rows), as `masks.pixel_masks`
   runs it; its sub-sample spans are cut at pixel borders into the bits
   `masks._gather_spans` makes;
 * areas: `area._coverage_kernel`, the exact-area kernel of `pixel_areas`, run
-  on the raster cut at the right of the polygon's window (the columns it
-  reaches see the same operations: nothing there is clipped);
+  on the raster cut at the right of the polygon's window, keeping the
+  window's columns (the columns it reaches see the same operations: nothing
+  there is clipped);
 * depth ranges: `raster.interpolate.depth_plane` compiled from the same source;
 * shading points and attributes: the operations of `fragments.fragment_points`
   and `fragments.fragment_values`, elementwise in the same order, with numpy's
@@ -31,7 +33,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from ..conventions import MAX_SUBPIXEL_BITS
 from ..limits import check_memory
@@ -135,10 +137,11 @@ def _window_masks(grid, width, height, cols, rows, window, cast):
 
 @njit(cache=True)
 def _window_areas(grid, width, height, window):
-    """(first row, (rows, window's right end) areas, within MAX_WORK); clip them to [0, 1].
+    """(first row, (rows, window's columns) areas, within MAX_WORK); clip them to [0, 1].
 
     `area._edge_arrays` + `_row_range` + the coverage kernel, on a raster as
-    wide as the window's right end (no column the polygon reaches is cut).
+    wide as the window's right end (no column the polygon reaches is cut),
+    keeping the window's columns (the columns left of it get nothing).
     """
     n = len(grid)
     count = 0
@@ -173,7 +176,7 @@ def _window_areas(grid, width, height, window):
         row0 = min(max(0, math.floor(ay.min())), height)
         row1 = max(min(height, math.ceil(by.max())), row0)
     areas, work = _coverage_kernel(
-        ax, ay, bx, by, winding, window[3], height, False, row0, row1, MAX_WORK
+        ax, ay, bx, by, winding, window[3], height, False, row0, row1, MAX_WORK, window[2]
     )
     return row0, areas, work <= MAX_WORK  # unclipped: the caller clips what it reads
 
@@ -329,10 +332,13 @@ def _fragment_values(sx, sy, channels, low, high, perspective, px, py, out, row,
 
 
 @njit(cache=True)
-def _polygon_into(p, xy, z, inv_w, values, offsets, window, width, height, cols, rows, bits,
-                  perspective, cast, row_counts, row_totals, base, out):  # fmt: skip
-    """Polygon p's fragments into rows base, base + 1, ... of `out`; their count, or -1 (REFERENCE)."""
-    x_out, y_out, polygon_out, mask_out, area_out, zmin_out, zmax_out, values_out = out
+def _polygon_coverage(p, xy, offsets, window, width, height, cols, rows, bits, cast, at, masks_out,
+                      areas_out):  # fmt: skip
+    """Polygon p's masks and clipped areas over its window, row by row, into cells at, at + 1, ...
+
+    Returns how many cells hold a fragment (a set bit or an area above 0),
+    or -1 (REFERENCE: the cells are not written).
+    """
     lo, hi = offsets[p], offsets[p + 1]
     if window[0] == window[1] or window[2] == window[3] or not _has_three_distinct(xy[lo:hi]):
         return 0
@@ -341,6 +347,26 @@ def _polygon_into(p, xy, z, inv_w, values, offsets, window, width, height, cols,
     area_row0, areas, within = _window_areas(grid, width, height, window)
     if not (exact and within):
         return -1
+    count, cell = 0, at
+    for y in range(window[0], window[1]):
+        for x in range(window[2], window[3]):
+            mask = masks[y - window[0], x - window[2]]
+            area = 0.0
+            if area_row0 <= y < area_row0 + areas.shape[0]:  # np.clip(areas, 0, 1) as the reference
+                area = _clip(areas[y - area_row0, x - window[2]], 0.0, 1.0)
+            masks_out[cell], areas_out[cell] = mask, area
+            count += mask != 0 or area > 0.0
+            cell += 1
+    return count
+
+
+@njit(cache=True)
+def _polygon_into(p, xy, z, inv_w, values, offsets, window, cols, rows, bits, perspective,
+                  row_counts, row_totals, masks, areas, at, base, out):  # fmt: skip
+    """Polygon p's fragments from its window's cells (at, at + 1, ...) into rows base, ... of `out`."""
+    x_out, y_out, polygon_out, mask_out, area_out, zmin_out, zmax_out, values_out = out
+    lo, hi = offsets[p], offsets[p + 1]
+    grid = _snapped(xy[lo:hi], bits)
     sx, sy, zs = grid[:, 0], grid[:, 1], z[lo:hi]
     _, _, c, dzdx, dzdy, z_first = depth_plane(sx, sy, zs)
     z_low, z_high = zs.min(), zs.max()
@@ -356,13 +382,11 @@ def _polygon_into(p, xy, z, inv_w, values, offsets, window, width, height, cols,
     for k in range(k_values):
         low[k], high[k] = values[lo:hi, k].min(), values[lo:hi, k].max()
     scratch = np.empty((3, max(n, k_values + 1)))
-    count = base
+    count, cell = base, at
     for y in range(window[0], window[1]):
         for x in range(window[2], window[3]):
-            mask = masks[y - window[0], x - window[2]]
-            area = 0.0
-            if area_row0 <= y < area_row0 + areas.shape[0]:  # np.clip(areas, 0, 1) as the reference
-                area = _clip(areas[y - area_row0, x], 0.0, 1.0)
+            mask, area = masks[cell], areas[cell]
+            cell += 1
             if mask == 0 and not area > 0.0:
                 continue
             x_out[count], y_out[count], polygon_out[count] = x, y, p
@@ -385,40 +409,101 @@ def _polygon_into(p, xy, z, inv_w, values, offsets, window, width, height, cols,
                 sx, sy, channels, low, high, perspective, px, py, values_out, count, scratch
             )
             count += 1
-    return count - base
+
+
+# Each pass in two twins: over numba's threads (`_shared`) and on this one (`_here`, for small
+# chunks: the threads' start and their spinning on a busy machine cost more than they save).
+# A polygon's cells and rows are fixed before the pass, so the output is the same either way.
+
+
+@njit(cache=True, parallel=True)
+def _coverage_shared(xy, offsets, windows, first, width, height, cols, rows, bits, cast, cells,
+                     masks, areas, made):  # fmt: skip
+    for q in prange(len(made)):
+        made[q] = _polygon_coverage(
+            first + q, xy, offsets, windows[first + q], width, height, cols, rows, bits, cast,
+            cells[q], masks, areas,
+        )  # fmt: skip
 
 
 @njit(cache=True)
+def _coverage_here(xy, offsets, windows, first, width, height, cols, rows, bits, cast, cells,
+                   masks, areas, made):  # fmt: skip
+    for q in range(len(made)):
+        made[q] = _polygon_coverage(
+            first + q, xy, offsets, windows[first + q], width, height, cols, rows, bits, cast,
+            cells[q], masks, areas,
+        )  # fmt: skip
+
+
+@njit(cache=True, parallel=True)
+def _fill_shared(xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective,
+                 cells, masks, areas, made, starts, out):  # fmt: skip
+    row_counts, row_totals = row_sums(cols)
+    for q in prange(len(made)):
+        if made[q] > 0:
+            _polygon_into(
+                first + q, xy, z, inv_w, values, offsets, windows[first + q], cols, rows, bits,
+                perspective, row_counts, row_totals, masks, areas, cells[q], starts[q], out,
+            )  # fmt: skip
+
+
+@njit(cache=True)
+def _fill_here(xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective,
+               cells, masks, areas, made, starts, out):  # fmt: skip
+    row_counts, row_totals = row_sums(cols)
+    for q in range(len(made)):
+        if made[q] > 0:
+            _polygon_into(
+                first + q, xy, z, inv_w, values, offsets, windows[first + q], cols, rows, bits,
+                perspective, row_counts, row_totals, masks, areas, cells[q], starts[q], out,
+            )  # fmt: skip
+
+
+PARALLEL_WORK = 2**12  # polygons plus window pixels in a chunk: below this, one thread works
+
+
 def chunk_fragments(
     xy, z, inv_w, values, offsets, windows, first, stop, width, height, cols, rows, bits,
-    perspective, capacity, cast,
+    perspective, cast,
 ):  # fmt: skip
     """Fragments of polygons [first, stop) in drawing order, as `polygon_fragments` makes them.
 
-    `windows` are `polygon_windows`; `capacity` at least the sum of their
-    areas; `bits` the sub-pixel bits (-1: unsnapped). Returns (count, starts,
-    status, x, y, polygon, mask, area, zmin, zmax, attributes): polygon p's
-    fragments are rows starts[p - first]:starts[p - first + 1] (only the
-    first `count` rows are filled); status[p - first] is DONE or REFERENCE
-    (no rows: make it with the reference).
+    `windows` are `polygon_windows`; `bits` the sub-pixel bits (-1: unsnapped). Returns (count, starts, status, x, y,
+    polygon, mask, area, zmin, zmax, attributes): polygon p's fragments are
+    rows starts[p - first]:starts[p - first + 1]; status[p - first] is DONE
+    or REFERENCE (no rows: make it with the reference).
+
+    Two passes, each shared among numba's threads when the chunk is large
+    (`PARALLEL_WORK`): every polygon's masks and areas into its cells of a
+    window-sized scratch (and its fragment count), then, with the counts
+    summed into each polygon's first row, its fragments from those cells.
     """
-    polygons = stop - first
+    sizes = (windows[first:stop, 1] - windows[first:stop, 0]) * (
+        windows[first:stop, 3] - windows[first:stop, 2]
+    )
+    cells = np.zeros(stop - first + 1, np.int64)
+    np.cumsum(sizes, out=cells[1:])
+    capacity = int(cells[-1])
+    shared = stop - first + capacity > PARALLEL_WORK
+    masks, areas = np.empty(capacity, np.uint64), np.empty(capacity)
+    made = np.empty(stop - first, np.int64)
+    coverage = _coverage_shared if shared else _coverage_here
+    coverage(xy, offsets, windows, first, width, height, cols, rows, bits, cast, cells, masks,
+             areas, made)  # fmt: skip
+    status = np.where(made < 0, REFERENCE, DONE)
+    starts = np.zeros(stop - first + 1, np.int64)
+    np.cumsum(np.maximum(made, 0), out=starts[1:])
+    count = int(starts[-1])
     out = (
-        np.empty(capacity, np.int64), np.empty(capacity, np.int64), np.empty(capacity, np.int64),
-        np.empty(capacity, np.uint64), np.empty(capacity), np.empty(capacity),
-        np.empty(capacity), np.empty((capacity, values.shape[1])),
+        np.empty(count, np.int64), np.empty(count, np.int64), np.empty(count, np.int64),
+        np.empty(count, np.uint64), np.empty(count), np.empty(count), np.empty(count),
+        np.empty((count, values.shape[1])),
     )  # fmt: skip
-    row_counts, row_totals = row_sums(cols)
-    starts = np.zeros(polygons + 1, np.int64)
-    status = np.zeros(polygons, np.int64)
-    for q in range(polygons):
-        made = _polygon_into(
-            first + q, xy, z, inv_w, values, offsets, windows[first + q], width, height, cols,
-            rows, bits, perspective, cast, row_counts, row_totals, starts[q], out,
-        )  # fmt: skip
-        status[q] = REFERENCE if made < 0 else DONE
-        starts[q + 1] = starts[q] + max(made, 0)
-    return (starts[polygons], starts, status, *out)
+    fill = _fill_shared if shared else _fill_here
+    fill(xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective, cells,
+         masks, areas, made, starts, out)  # fmt: skip
+    return (count, starts, status, *out)
 
 
 CHUNK_POLYGONS = 4096  # polygons per compiled call: the progress bar and Ctrl-C act between calls
@@ -471,10 +556,10 @@ def fragment_chunks(polygons, width, height, *, mask, subpixel_bits, perspective
     buffers checked against the memory limit first (the error names `what`);
     polygons it flags `REFERENCE` are made by `polygon_fragments` in their place.
     """
-    from .fragments import polygon_fragments
     from .masks import MASK_LAYOUTS
 
     cols, rows = MASK_LAYOUTS[mask]
+    options = {"mask": mask, "subpixel_bits": subpixel_bits, "perspective": perspective}
     bits = -1 if subpixel_bits is None else subpixel_bits
     offsets = np.asarray(polygons.offsets, np.int64)
     xy, z, inv_w = polygons.xy, polygons.z, polygons.inv_w
@@ -490,23 +575,42 @@ def fragment_chunks(polygons, width, height, *, mask, subpixel_bits, perspective
         check_memory(
             capacity * per_fragment, f"{what or 'fragments'}: polygons {first}..{stop - 1} at once"
         )
-        count, starts, status, *found = chunk_fragments(
+        _, starts, status, *found = chunk_fragments(
             xy, z, inv_w, values, offsets, windows, first, stop, width, height, cols, rows,
-            bits, perspective, capacity, np.float64,
+            bits, perspective, np.float64,
         )  # fmt: skip
-        parts, done = [], 0
-        for p in [*np.flatnonzero(status == REFERENCE) + first, stop]:
-            rows_done = slice(starts[done], starts[p - first])
-            parts.append(FlatFragments(*(a[rows_done] for a in found)))
-            if p < stop:
-                part = polygon_fragments(
-                    xy[offsets[p] : offsets[p + 1]], z[offsets[p] : offsets[p + 1]],
-                    inv_w[offsets[p] : offsets[p + 1]], values[offsets[p] : offsets[p + 1]],
-                    width, height, mask=mask, subpixel_bits=subpixel_bits,
-                    perspective=perspective, polygon_index=int(p),
-                )  # fmt: skip
-                if part is not None:
-                    parts.append(FlatFragments.of_polygon(part, int(p)))
-                done = p - first + 1
-        yield stop - first, FlatFragments.join(parts, values.shape[1])
+        found = FlatFragments(*found)
+        if (status == REFERENCE).any():
+            found = _spliced(
+                found,
+                starts,
+                status,
+                first,
+                (xy, z, inv_w, values, offsets),
+                width,
+                height,
+                options,
+            )
+        yield stop - first, found
         first = stop
+
+
+def _spliced(found, starts, status, first, arrays, width, height, options):
+    """A chunk's `found` with the polygons flagged REFERENCE made by `polygon_fragments`, in place."""
+    from .fragments import polygon_fragments
+
+    xy, z, inv_w, values, offsets = arrays
+    parts, done, stop = [], 0, first + len(status)
+    for p in [*np.flatnonzero(status == REFERENCE) + first, stop]:
+        parts.append(FlatFragments(*(getattr(found, name)[starts[done] : starts[p - first]]
+                                     for name in FlatFragments.__dataclass_fields__)))  # fmt: skip
+        if p < stop:
+            rows = slice(offsets[p], offsets[p + 1])
+            part = polygon_fragments(
+                xy[rows], z[rows], inv_w[rows], values[rows], width, height,
+                polygon_index=int(p), **options,
+            )  # fmt: skip
+            if part is not None:
+                parts.append(FlatFragments.of_polygon(part, int(p)))
+            done = p - first + 1
+    return FlatFragments.join(parts, found.values.shape[1])

@@ -12,8 +12,9 @@ contribution: the same terms, in another order (equal to ~1e-15).
 
 from __future__ import annotations
 
+import numba
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from .pixelstruct import SAME_SURFACE_TOLERANCE, ABufferStats, FragmentTable, Resolved
 
@@ -80,13 +81,13 @@ def _before(key_a, seq_a, key_b, seq_b):
 
 
 @njit(cache=True)
-def _split(root, key, seq, keys, seqs, left, right):
+def _split(root, key, seq, keys, seqs, left, right, hook):
     """Split a treap into (its nodes sorting before (key, seq), the others).
 
-    Iterative: the two halves grow from two spare hook slots at the ends of
-    `left`/`right`, down the search path. O(depth).
+    Iterative: the two halves grow from two spare slots `hook`, `hook` + 1
+    of `left`/`right` (one pair per thread), down the search path. O(depth).
     """
-    low_hook, high_hook = len(left) - 2, len(left) - 1
+    low_hook, high_hook = hook, hook + 1
     low_tail, high_tail, node = low_hook, high_hook, root
     while node >= 0:
         if _before(keys[node], seqs[node], key, seq):
@@ -124,16 +125,16 @@ def _merge(low, high, priority, left, right):
 
 
 @njit(cache=True, inline="always")
-def _insert(root, node, keys, seqs, priority, left, right):
-    low, high = _split(root, keys[node], seqs[node], keys, seqs, left, right)
+def _insert(root, node, keys, seqs, priority, left, right, hook):
+    low, high = _split(root, keys[node], seqs[node], keys, seqs, left, right, hook)
     left[node] = right[node] = -1
     return _merge(_merge(low, node, priority, left, right), high, priority, left, right)
 
 
 @njit(cache=True, inline="always")
-def _remove(root, node, keys, seqs, priority, left, right):
-    low, rest = _split(root, keys[node], seqs[node], keys, seqs, left, right)
-    _, high = _split(rest, keys[node], seqs[node] + 1, keys, seqs, left, right)
+def _remove(root, node, keys, seqs, priority, left, right, hook):
+    low, rest = _split(root, keys[node], seqs[node], keys, seqs, left, right, hook)
+    _, high = _split(rest, keys[node], seqs[node] + 1, keys, seqs, left, right, hook)
     return _merge(low, high, priority, left, right)
 
 
@@ -167,7 +168,9 @@ def _priorities(count):
     return priority
 
 
-@njit(cache=True)
+PARALLEL_FRAGMENTS = 2**16  # fewer fragments are inserted on the calling thread
+
+
 def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pixel_count, full):
     """Insert fragments in drawing order; edits the field arrays (slots) in place.
 
@@ -182,26 +185,76 @@ def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pi
     visits only the stored fragments of the incoming object with at least
     `samples` - popcount(incoming) bits, and takes the first of those that
     match in list order. `objects` must be within +-OBJECT_KEY_LIMIT (exact keys).
+
+    `pixels` must be sorted (`pixel_order`). Pixels are independent: many
+    fragments (`PARALLEL_FRAGMENTS`) are cut into runs of whole pixels, one
+    per numba thread, each with its own two hook slots; the lists and counts
+    are those of one run.
     """
-    table = (zmin, zmax, area, mask, color, opacity, objects)
     n = len(pixels)
-    root = np.full(pixel_count, -1, np.int64)
-    partial_root = np.full(pixel_count, -1, np.int64)
-    hider = np.full(pixel_count, -1, np.int64)
-    length = np.zeros(pixel_count, np.int64)
-    seq = np.arange(n + 2)  # time of (re)insertion; two hook slots at the end
-    bits = np.empty(n + 2)  # the key of the partial treap: object, then the mask's popcount
-    for i in range(n):
+    shared = n > PARALLEL_FRAGMENTS
+    runs = numba.get_num_threads() if shared else 1
+    cuts = np.full(runs + 1, n, np.int64)
+    if n:
+        cuts[:runs] = np.searchsorted(pixels, pixels[np.arange(runs) * n // runs], side="left")
+    slots = n + 2 * runs  # the fragments, then each run's two hook slots
+    lists = (
+        np.full(pixel_count, -1, np.int64),  # root
+        np.full(pixel_count, -1, np.int64),  # partial_root
+        np.full(pixel_count, -1, np.int64),  # hider
+        np.zeros(pixel_count, np.int64),  # length
+        np.arange(slots),  # seq: time of (re)insertion
+        _partial_keys(objects, mask, slots),  # bits: the key of the partial treap
+        np.full(slots, -1, np.int64), np.full(slots, -1, np.int64),  # left, right
+        np.full(slots, -1, np.int64), np.full(slots, -1, np.int64),  # partial_left, _right
+        np.concatenate((zmin, np.zeros(2 * runs))),  # zkey
+        _priorities(slots),
+    )  # fmt: skip
+    stats = np.zeros((runs, 3), np.int64)
+    head, after = np.full(pixel_count, -1, np.int64), np.full(n, -1, np.int64)
+    insert = _insert_shared if shared else _insert_here
+    table = (zmin, zmax, area, mask, color, opacity, objects)
+    insert(cuts, pixels, table, lists, full, stats, head, after)
+    totals = np.array([stats[:, MERGED].sum(), stats[:, DISCARDED].sum(), stats[:, LONGEST].max()])
+    return head, after, totals
+
+
+@njit(cache=True)
+def _partial_keys(objects, mask, slots):
+    """The partial treap's keys: object * 128 + the mask's popcount (hook slots left as they are)."""
+    bits = np.empty(slots)
+    for i in range(len(objects)):
         bits[i] = objects[i] * 128.0 + popcount(mask[i])
+    return bits
+
+
+@njit(cache=True, parallel=True)
+def _insert_shared(cuts, pixels, table, lists, full, stats, head, after):
+    for run in prange(len(cuts) - 1):
+        _insert_run(cuts[run], cuts[run + 1], len(pixels) + 2 * run, pixels, table, lists, full,
+                    stats[run], head, after)  # fmt: skip
+
+
+@njit(cache=True)
+def _insert_here(cuts, pixels, table, lists, full, stats, head, after):
+    for run in range(len(cuts) - 1):
+        _insert_run(cuts[run], cuts[run + 1], len(pixels) + 2 * run, pixels, table, lists, full,
+                    stats[run], head, after)  # fmt: skip
+
+
+@njit(cache=True)
+def _insert_run(first, stop, hook, pixels, table, lists, full, stats, head, after):
+    """Insert fragments first..stop - 1 (whole pixels), splitting treaps at slots hook, hook + 1.
+
+    Then links each of their pixels' treaps in key order into `head`/`after`.
+    """
+    zmin, zmax, area, mask, color, opacity, objects = table
+    root, partial_root, hider, length, seq, bits, left, right = lists[:8]
+    partial_left, partial_right, zkey, priority = lists[8:]
+    n = len(pixels)
     samples = popcount(full)
-    left, right = np.full(n + 2, -1, np.int64), np.full(n + 2, -1, np.int64)
-    partial_left, partial_right = np.full(n + 2, -1, np.int64), np.full(n + 2, -1, np.int64)
-    zkey = np.empty(n + 2)
-    zkey[:n] = zmin
-    priority = _priorities(n + 2)
-    stack, dropped = np.empty(n + 1, np.int64), np.empty(n + 1, np.int64)
-    stats = np.zeros(3, np.int64)
-    for incoming in range(n):
+    stack, dropped = np.empty(stop - first + 1, np.int64), np.empty(stop - first + 1, np.int64)
+    for incoming in range(first, stop):
         p, slot = pixels[incoming], incoming
         if root[p] < 0:  # an empty pixelstruct: no search, no split
             root[p], length[p] = slot, 1
@@ -214,11 +267,11 @@ def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pi
         if partial_root[p] >= 0 and not complete(mask[incoming], area[incoming], full):
             first_key = objects[incoming] * 128.0 + (samples - popcount(mask[incoming]))
             below, rest = _split(
-                partial_root[p], first_key, -1, bits, seq, partial_left, partial_right
+                partial_root[p], first_key, -1, bits, seq, partial_left, partial_right, hook
             )
             near, above = _split(
                 rest, objects[incoming] * 128.0 + samples, n + 2, bits, seq, partial_left,
-                partial_right,
+                partial_right, hook,
             )  # fmt: skip
             partner = -1
             for k in range(_in_order(near, partial_left, partial_right, stack, dropped)):
@@ -233,9 +286,9 @@ def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pi
                 partial_left, partial_right,
             )  # fmt: skip
             if partner >= 0:  # combine: unlink the partner, reinsert it as the merged fragment
-                root[p] = _remove(root[p], partner, zkey, seq, priority, left, right)
+                root[p] = _remove(root[p], partner, zkey, seq, priority, left, right, hook)
                 partial_root[p] = _remove(
-                    partial_root[p], partner, bits, seq, priority, partial_left, partial_right
+                    partial_root[p], partner, bits, seq, priority, partial_left, partial_right, hook
                 )
                 length[p] -= 1
                 combine(table, partner, incoming)
@@ -248,7 +301,7 @@ def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pi
             stats[DISCARDED] += 1
             stats[LONGEST] = max(stats[LONGEST], length[p])
             continue
-        low, high = _split(root[p], zkey[slot], seq[slot], zkey, seq, left, right)
+        low, high = _split(root[p], zkey[slot], seq[slot], zkey, seq, left, right, hook)
         left[slot] = right[slot] = -1
         root[p] = _merge(low, slot, priority, left, right)
         length[p] += 1
@@ -258,26 +311,26 @@ def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pi
                 gone = dropped[k]
                 if not complete(mask[gone], area[gone], full):
                     partial_root[p] = _remove(
-                        partial_root[p], gone, bits, seq, priority, partial_left, partial_right
-                    )
+                        partial_root[p], gone, bits, seq, priority, partial_left, partial_right,
+                        hook,
+                    )  # fmt: skip
                 length[p] -= 1
                 stats[DISCARDED] += 1
         else:
             root[p] = _merge(root[p], high, priority, left, right)
             if not complete(mask[slot], area[slot], full):
                 partial_root[p] = _insert(
-                    partial_root[p], slot, bits, seq, priority, partial_left, partial_right
+                    partial_root[p], slot, bits, seq, priority, partial_left, partial_right, hook
                 )
         stats[LONGEST] = max(stats[LONGEST], length[p])
-    head = np.full(pixel_count, -1, np.int64)
-    after = np.full(n, -1, np.int64)
-    for p in range(pixel_count):
-        count = _in_order(root[p], left, right, stack, dropped)
+    for i in range(first, stop):  # each pixel once, at its first fragment
+        if i > first and pixels[i] == pixels[i - 1]:
+            continue
+        count = _in_order(root[pixels[i]], left, right, stack, dropped)
         if count:
-            head[p] = dropped[0]
+            head[pixels[i]] = dropped[0]
             for k in range(count - 1):
                 after[dropped[k]] = dropped[k + 1]
-    return head, after, stats
 
 
 @njit(cache=True, inline="always")

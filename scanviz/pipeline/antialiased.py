@@ -15,6 +15,8 @@ FRAGMENT_BYTES = 8 * 3 * 12  # per a-buffer fragment, held about three times (pa
 
 SHADING_BYTES = 8 * 64  # per fragment shaded by Phong/Gooch: vectors of every light term
 
+SHADE_FRAGMENTS = 2**17  # fragments shaded at once: the light terms' vectors stay this long
+
 
 def _antialiased(
     scene,
@@ -50,8 +52,11 @@ def _antialiased(
         colors = prepared.flat_colors[owner]
     elif shading == "gouraud":
         colors = found.values
-    else:
-        colors = _shade_pixels(scene, shading, found.values)
+    else:  # fragment by fragment arithmetic: slices shade as the whole would
+        colors = np.empty((len(owner), 3))
+        for start in range(0, len(owner), SHADE_FRAGMENTS):
+            part = slice(start, start + SHADE_FRAGMENTS)
+            colors[part] = _shade_pixels(scene, shading, found.values[part]).reshape(-1, 3)
         stats.shaded_pixels = len(owner)
     fragments = Fragments(
         x=found.x,
@@ -65,6 +70,7 @@ def _antialiased(
         color=np.asarray(colors, dtype=np.float64).reshape(-1, 3),
         opacity=prepared.polygon_opacity[owner],
     )
+    del found, owner, colors  # `fragments` holds copies: the attributes go before resolving
     result = resolve(
         fragments,
         width,
@@ -76,8 +82,10 @@ def _antialiased(
         merge=merge,
         trace=tracer,
     )
-    stats.fragments, stats.path = len(owner), result.stats.path
-    depth, nearest = nearest_fragments(found.y * width + found.x, found.zmin, owner, width * height)
+    stats.fragments, stats.path = fragments.count, result.stats.path
+    depth, nearest = nearest_fragments(
+        fragments.y * width + fragments.x, fragments.zmin, fragments.polygon, width * height
+    )
     return result.image, depth.reshape(height, width), nearest.reshape(height, width), result
 
 
