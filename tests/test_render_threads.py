@@ -10,7 +10,6 @@ thread count.
 """
 
 import dataclasses
-import importlib
 
 import numba
 import numpy as np
@@ -18,11 +17,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scanviz import render
+from scanviz.pipeline import shade as shade_module
+from scanviz.raster import interpolate
 from scanviz.scene.model import Camera, Light, Material, Mesh, Scene, SceneObject
 from scanviz.shading import kernels as s_kernels
 from scanviz.visibility import kernels as z_kernels
 
-render_module = importlib.import_module("scanviz.pipeline.render")  # the function shadows it
 BASE = settings.default.max_examples
 THREADS = sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)})
 
@@ -63,9 +63,15 @@ def soups(draw):
 def test_compiled_render_is_the_traced_one_with_any_thread_count(scene, shading):
     traced = render(scene, 21, 37, shading=shading, trace=True)
     before = numba.get_num_threads()
-    least = (z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS, render_module.PARALLEL_PIXELS)
+    least = (
+        z_kernels.PARALLEL_WORK,
+        s_kernels.PARALLEL_POINTS,
+        shade_module.PARALLEL_PIXELS,
+        interpolate.PARALLEL_VERTICES,
+    )
     # Threads however small the scene: the bands, the shading and the image gather.
-    z_kernels.PARALLEL_WORK = s_kernels.PARALLEL_POINTS = render_module.PARALLEL_PIXELS = 0
+    z_kernels.PARALLEL_WORK = s_kernels.PARALLEL_POINTS = shade_module.PARALLEL_PIXELS = 0
+    interpolate.PARALLEL_VERTICES = 0
     try:
         for threads in THREADS:
             numba.set_num_threads(threads)
@@ -79,4 +85,9 @@ def test_compiled_render_is_the_traced_one_with_any_thread_count(scene, shading)
             )
     finally:
         numba.set_num_threads(before)
-        z_kernels.PARALLEL_WORK, s_kernels.PARALLEL_POINTS, render_module.PARALLEL_PIXELS = least
+        (
+            z_kernels.PARALLEL_WORK,
+            s_kernels.PARALLEL_POINTS,
+            shade_module.PARALLEL_PIXELS,
+            interpolate.PARALLEL_VERTICES,
+        ) = least

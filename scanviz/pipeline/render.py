@@ -26,7 +26,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from .. import steps
+from .. import buffers, steps
 from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
 from ..limits import check_memory
 from ..raster.api import as_tracer
@@ -34,6 +34,7 @@ from ..scene.model import Material, Scene
 from ..shading.taylor import EXPANSIONS
 from ..trace import Recorder
 from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
+from . import shade
 from .antialiased import _antialiased
 from .edges import _draw_feature_edges
 from .fast_shade import fast_phong_image
@@ -47,7 +48,6 @@ VISIBILITIES = (*ALGORITHMS, *ANTIALIASED)  # the opaque algorithms, then the a-
 # Bytes per pixel of the buffers a render holds at once (image, depth, ids, their copies), plus
 # 8 per attribute per pixel, plus the shading temporaries of per-pixel shading.
 PIXEL_BYTES = {"opaque": 8 * 8, "abuffer": 8 * 16, "flawed": 8 * 16}
-PARALLEL_PIXELS = 2**16  # images of more pixels are gathered by numba's threads
 SHADING_BYTES = 8 * 64  # per pixel or fragment shaded by Phong/Gooch: vectors of every light term
 MERGES = ("none", "object")  # the a-buffer's `merge` (scanviz.abuffer.merge)
 RELIGHTABLE = ("phong", "gooch")  # shaded per pixel from the kept normal, position and material
@@ -319,8 +319,8 @@ def _opaque(
 
 def _gathered_image(polygon, colors, values, background):
     """(H, W, 3): each pixel's polygon's color (flat), else its values (Gouraud), else the background."""
-    image = np.empty((*polygon.shape, 3))
-    shared = polygon.size > PARALLEL_PIXELS and numba.get_num_threads() > 1
+    image = buffers.empty((*polygon.shape, 3))
+    shared = polygon.size > shade.PARALLEL_PIXELS and numba.get_num_threads() > 1
     gather = _gather_shared if shared else _gather_here
     gather(polygon, colors, values, background, image)
     return image

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+import numba
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from ..scene.model import Material, Scene
 from ..vectors import unit_vectors
 
+PARALLEL_PIXELS = 2**16  # rasters of more pixels get their exact materials from numba's threads
 MATERIAL_FIRST, MATERIAL_STOP = 6, 15
 MATERIAL = slice(
     MATERIAL_FIRST, MATERIAL_STOP
@@ -110,22 +112,44 @@ def _exact_materials(polygons, result) -> None:
     _put_exact_materials(polygons.values, polygons.offsets, result.polygon, result.values)
 
 
+def _put_exact_materials(vertex_values, offsets, polygon, values) -> None:
+    """`_exact_materials` in two passes: which polygons have one material, then their pixels."""
+    uniform = _uniform_materials(vertex_values, offsets)
+    shared = polygon.size > PARALLEL_PIXELS and numba.get_num_threads() > 1
+    put = _put_rows_shared if shared else _put_rows_here
+    put(vertex_values, offsets, uniform, polygon, values)
+
+
 @njit(cache=True)
-def _put_exact_materials(vertex_values, offsets, polygon, values):  # pragma: no cover - compiled
-    """`_exact_materials` in one pass: which polygons have one material, then their pixels."""
-    first, stop = MATERIAL_FIRST, MATERIAL_STOP
+def _uniform_materials(vertex_values, offsets):  # pragma: no cover - compiled
     uniform = np.ones(offsets.shape[0] - 1, np.bool_)
     for p in range(offsets.shape[0] - 1):
         for v in range(offsets[p] + 1, offsets[p + 1]):
-            for k in range(first, stop):
+            for k in range(MATERIAL_FIRST, MATERIAL_STOP):
                 if vertex_values[v, k] != vertex_values[offsets[p], k]:
                     uniform[p] = False
+    return uniform
+
+
+@njit(cache=True, parallel=True)
+def _put_rows_shared(vertex_values, offsets, uniform, polygon, values):  # pragma: no cover
+    for y in prange(polygon.shape[0]):
+        _put_row(y, vertex_values, offsets, uniform, polygon, values)
+
+
+@njit(cache=True)
+def _put_rows_here(vertex_values, offsets, uniform, polygon, values):  # pragma: no cover
     for y in range(polygon.shape[0]):
-        for x in range(polygon.shape[1]):
-            p = polygon[y, x]
-            if p >= 0 and uniform[p]:
-                for k in range(first, stop):
-                    values[y, x, k] = vertex_values[offsets[p], k]
+        _put_row(y, vertex_values, offsets, uniform, polygon, values)
+
+
+@njit(cache=True, inline="always")
+def _put_row(y, vertex_values, offsets, uniform, polygon, values):  # pragma: no cover
+    for x in range(polygon.shape[1]):
+        p = polygon[y, x]
+        if p >= 0 and uniform[p]:
+            for k in range(MATERIAL_FIRST, MATERIAL_STOP):
+                values[y, x, k] = vertex_values[offsets[p], k]
 
 
 def _headlight(camera):

@@ -37,10 +37,11 @@ from __future__ import annotations
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
+import numba
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
-from .. import steps
+from .. import buffers, steps
 from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
 from .fixed import SnappedPolygon
 from .scanline import ActiveEdge, _emit_row, _insertion_sort, bucketed_edge_table
@@ -199,19 +200,35 @@ def vertex_channels(values: np.ndarray, inv_w: np.ndarray, perspective: bool) ->
     """
     if not perspective:
         return np.array(values, dtype=np.float64)
-    return _over_w(np.asarray(values, np.float64), np.asarray(inv_w, np.float64))
+    values, inv_w = np.asarray(values, np.float64), np.asarray(inv_w, np.float64)
+    out = buffers.empty((len(values), values.shape[1] + 1))
+    shared = len(values) > PARALLEL_VERTICES and numba.get_num_threads() > 1
+    (_over_w_shared if shared else _over_w_here)(values, inv_w, out)
+    return out
+
+
+PARALLEL_VERTICES = 2**16  # more vertices are divided by w on numba's threads
+
+
+@njit(cache=True, parallel=True)
+def _over_w_shared(values, inv_w, out):  # pragma: no cover - compiled
+    for i in prange(values.shape[0]):
+        _over_w_row(i, values, inv_w, out)
 
 
 @njit(cache=True)
-def _over_w(values, inv_w):  # pragma: no cover - compiled
-    """``column_stack([values * inv_w[:, None], inv_w])`` in one pass (the same products)."""
-    count, k = values.shape
-    out = np.empty((count, k + 1))
-    for i in range(count):
-        for j in range(k):
-            out[i, j] = values[i, j] * inv_w[i]
-        out[i, k] = inv_w[i]
-    return out
+def _over_w_here(values, inv_w, out):  # pragma: no cover - compiled
+    for i in range(values.shape[0]):
+        _over_w_row(i, values, inv_w, out)
+
+
+@njit(cache=True, inline="always")
+def _over_w_row(i, values, inv_w, out):  # pragma: no cover - compiled
+    """Row i of ``column_stack([values * inv_w[:, None], inv_w])`` (the same products)."""
+    k = values.shape[1]
+    for j in range(k):
+        out[i, j] = values[i, j] * inv_w[i]
+    out[i, k] = inv_w[i]
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
+from .. import buffers
 from ..vectors import _SAFE_HIGH, _SAFE_LOW
 
 DIRECTIONAL, POINT = 0, 1  # light kinds, as `shade_rows` takes them
@@ -71,7 +72,7 @@ def shade_image(polygon, values, eye, view_dir, kinds, vectors, colors, ambient_
     """
     flat = values.reshape(-1, values.shape[-1])
     ids = polygon.ravel()
-    out = np.empty((len(ids), 3))
+    out = buffers.empty((len(ids), 3))
     shade = _shade_image_shared if _shared(len(ids)) else _shade_image_here
     shade(ids, flat[:, 3:6], flat[:, 0:3], flat[:, 6:15], eye, view_dir, kinds, vectors, colors, ambient_light, background, out)  # fmt: skip
     return out.reshape(*polygon.shape, 3)

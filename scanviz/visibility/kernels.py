@@ -20,6 +20,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
+from .. import buffers
 from ..raster import interpolate as formulas
 from ..raster.kernels import (
     CEIL,
@@ -324,7 +325,7 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     """
     # np.zeros here, not in numba: the pages of a large buffer are zeroed by the system as
     # they are first written (calloc), so the values of pixels never drawn cost nothing.
-    values = np.zeros((height, width, value_count))
+    values = buffers.zeros((height, width, value_count))
     planes, first_row, stop_row, skipped = _polygon_rows(
         units, positions, z, offsets, scale, width, height
     )
@@ -332,8 +333,8 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     largest = int(np.diff(offsets).max()) if len(offsets) > 1 else 0
     # Threads pay from about this much work: fewer listed polygons and pixels run here.
     threads = numba.get_num_threads() if len(listed) + height * width > PARALLEL_WORK else 1
-    depth = np.empty((height, width))
-    ids = np.empty((height, width), np.int64)
+    depth = buffers.empty((height, width))
+    ids = buffers.empty((height, width), np.int64)
     thread_stats = np.zeros((threads, STAT_FIELDS), np.int64)
     drew = np.zeros(len(offsets) - 1, np.bool_)
     draw = _draw_bands if threads > 1 else _draw_bands_here
