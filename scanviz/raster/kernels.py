@@ -129,6 +129,17 @@ def float_ceil(x):
     return math.ceil(min(max(float(x), -FLOAT_X_LIMIT), FLOAT_X_LIMIT))
 
 
+@njit(cache=True, inline="always")
+def put_edge(table, column, units, i, j, lower, upper, row_start, row_end):
+    """Column `column` of an edge table: the edge from vertex i to j, `lower` its lower end."""
+    # Downward edges enter a counter-clockwise polygon from the left: winding +1.
+    table[WINDING, column] = 1 if units[j, 1] < units[i, 1] else -1
+    table[ROW_START, column], table[ROW_END, column] = row_start, row_end
+    table[X0, column], table[Y0, column] = units[lower, 0], units[lower, 1]
+    table[X1, column], table[Y1, column] = units[upper, 0], units[upper, 1]
+    table[LOWER, column], table[UPPER, column] = lower, upper
+
+
 @njit(cache=True)
 def edge_table(units, offsets, scale, height):
     """The edges of one polygon that cross a sample row of the raster, sorted by first row.
@@ -149,12 +160,7 @@ def edge_table(units, offsets, scale, height):
             kept_for_topology += bucket >= row_end
             row_start = max(bucket, 0)  # rows below the raster are never scanned
             if row_start < min(row_end, height):
-                # Downward edges enter a counter-clockwise polygon from the left: winding +1.
-                table[WINDING, count] = 1 if units[j, 1] < units[i, 1] else -1
-                table[ROW_START, count], table[ROW_END, count] = row_start, row_end
-                table[X0, count], table[Y0, count] = units[lower, 0], units[lower, 1]
-                table[X1, count], table[Y1, count] = units[upper, 0], units[upper, 1]
-                table[LOWER, count], table[UPPER, count] = lower, upper
+                put_edge(table, count, units, i, j, lower, upper, row_start, row_end)
                 count += 1
     order = np.argsort(table[ROW_START, :count], kind="mergesort")
     return np.ascontiguousarray(table[:, order]), offsets[-1] - offsets[0], kept_for_topology

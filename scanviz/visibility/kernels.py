@@ -30,8 +30,6 @@ from ..raster.kernels import (
     ROW_START,
     UPPER,
     WINDING,
-    X0,
-    X1,
     Y0,
     Y1,
     Q,
@@ -41,6 +39,7 @@ from ..raster.kernels import (
     ceil_div,
     edge_table,
     move,
+    put_edge,
 )
 
 depth_plane = njit(cache=True)(formulas.depth_plane)
@@ -241,11 +240,7 @@ def edge_table_into(units, offsets, scale, height, table):
                 for field in range(TABLE_FIELDS):
                     table[field, k] = table[field, k - 1]
                 k -= 1
-            table[WINDING, k] = 1 if units[j, 1] < units[i, 1] else -1
-            table[ROW_START, k], table[ROW_END, k] = row_start, row_end
-            table[X0, k], table[Y0, k] = units[lower, 0], units[lower, 1]
-            table[X1, k], table[Y1, k] = units[upper, 0], units[upper, 1]
-            table[LOWER, k], table[UPPER, k] = lower, upper
+            put_edge(table, k, units, i, j, lower, upper, row_start, row_end)
             count += 1
     return count
 
