@@ -39,6 +39,7 @@ from ..conventions import MAX_SUBPIXEL_BITS
 from ..limits import check_memory
 from ..raster import interpolate
 from ..raster.kernels import scan_polygon
+from ..threads import use_threads
 from .area import MAX_WORK, _coverage_kernel
 
 depth_plane = njit(cache=True)(interpolate.depth_plane)
@@ -485,7 +486,7 @@ def chunk_fragments(
     cells = np.zeros(stop - first + 1, np.int64)
     np.cumsum(sizes, out=cells[1:])
     capacity = int(cells[-1])
-    shared = stop - first + capacity > PARALLEL_WORK
+    shared = use_threads(stop - first + capacity, PARALLEL_WORK)
     masks, areas = np.empty(capacity, np.uint64), np.empty(capacity)
     made = np.empty(stop - first, np.int64)
     coverage = _coverage_shared if shared else _coverage_here

@@ -16,6 +16,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
+from ..threads import use_threads
 from .pixelstruct import SAME_SURFACE_TOLERANCE, ABufferStats, FragmentTable, Resolved
 
 # Fields of the stats array returned by `insert_fragments`.
@@ -192,7 +193,7 @@ def insert_fragments(pixels, zmin, zmax, area, mask, color, opacity, objects, pi
     are those of one run.
     """
     n = len(pixels)
-    shared = n > PARALLEL_FRAGMENTS
+    shared = use_threads(n, PARALLEL_FRAGMENTS)
     runs = numba.get_num_threads() if shared else 1
     cuts = np.full(runs + 1, n, np.int64)
     if n:

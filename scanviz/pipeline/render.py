@@ -22,7 +22,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-import numba
 import numpy as np
 from numba import njit, prange
 
@@ -32,6 +31,7 @@ from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..scene.model import Material, Scene
 from ..shading.taylor import EXPANSIONS
+from ..threads import use_threads
 from ..trace import Recorder
 from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
 from . import shade
@@ -320,7 +320,7 @@ def _opaque(
 def _gathered_image(polygon, colors, values, background):
     """(H, W, 3): each pixel's polygon's color (flat), else its values (Gouraud), else the background."""
     image = buffers.empty((*polygon.shape, 3))
-    shared = polygon.size > shade.PARALLEL_PIXELS and numba.get_num_threads() > 1
+    shared = use_threads(polygon.size, shade.PARALLEL_PIXELS)
     gather = _gather_shared if shared else _gather_here
     gather(polygon, colors, values, background, image)
     return image

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-import numba
 import numpy as np
 from numba import njit, prange
 
 from ..scene.model import Material, Scene
+from ..threads import use_threads
 from ..vectors import unit_vectors
 
 PARALLEL_PIXELS = 2**16  # rasters of more pixels get their exact materials from numba's threads
@@ -115,8 +115,7 @@ def _exact_materials(polygons, result) -> None:
 def _put_exact_materials(vertex_values, offsets, polygon, values) -> None:
     """`_exact_materials` in two passes: which polygons have one material, then their pixels."""
     uniform = _uniform_materials(vertex_values, offsets)
-    shared = polygon.size > PARALLEL_PIXELS and numba.get_num_threads() > 1
-    put = _put_rows_shared if shared else _put_rows_here
+    put = _put_rows_shared if use_threads(polygon.size, PARALLEL_PIXELS) else _put_rows_here
     put(vertex_values, offsets, uniform, polygon, values)
 
 

@@ -37,11 +37,11 @@ from __future__ import annotations
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
-import numba
 import numpy as np
 from numba import njit, prange
 
 from .. import buffers, steps
+from ..threads import use_threads
 from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
 from .fixed import SnappedPolygon
 from .scanline import ActiveEdge, _emit_row, _insertion_sort, bucketed_edge_table
@@ -202,8 +202,9 @@ def vertex_channels(values: np.ndarray, inv_w: np.ndarray, perspective: bool) ->
         return np.array(values, dtype=np.float64)
     values, inv_w = np.asarray(values, np.float64), np.asarray(inv_w, np.float64)
     out = buffers.empty((len(values), values.shape[1] + 1))
-    shared = len(values) > PARALLEL_VERTICES and numba.get_num_threads() > 1
-    (_over_w_shared if shared else _over_w_here)(values, inv_w, out)
+    (_over_w_shared if use_threads(len(values), PARALLEL_VERTICES) else _over_w_here)(
+        values, inv_w, out
+    )
     return out
 
 

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 from numba import njit, prange
 
 from .. import buffers
+from ..threads import use_threads
 from ..vectors import _SAFE_HIGH, _SAFE_LOW
 
 DIRECTIONAL, POINT = 0, 1  # light kinds, as `shade_rows` takes them
@@ -46,11 +46,6 @@ def unit_and_length(x, y, z):
 PARALLEL_POINTS = 2**14  # fewer points are shaded on the calling thread
 
 
-def _shared(points: int) -> bool:
-    """Whether to share `points` among threads: many of them, and more than one thread."""
-    return points > PARALLEL_POINTS and numba.get_num_threads() > 1
-
-
 def shade_rows(positions, normals, materials, eye, view_dir, kinds, vectors, colors, ambient_light):
     """(N, 3) colors of `illumination._shade` without steps.
 
@@ -61,7 +56,7 @@ def shade_rows(positions, normals, materials, eye, view_dir, kinds, vectors, col
     Many points are shared among numba's threads, a few shaded here.
     """
     out = np.empty((positions.shape[0], 3))
-    shade = _shade_shared if _shared(len(positions)) else _shade_here
+    shade = _shade_shared if use_threads(len(positions), PARALLEL_POINTS) else _shade_here
     shade(positions, normals, materials, eye, view_dir, kinds, vectors, colors, ambient_light, out)
     return out
 
@@ -73,7 +68,7 @@ def shade_image(polygon, values, eye, view_dir, kinds, vectors, colors, ambient_
     flat = values.reshape(-1, values.shape[-1])
     ids = polygon.ravel()
     out = buffers.empty((len(ids), 3))
-    shade = _shade_image_shared if _shared(len(ids)) else _shade_image_here
+    shade = _shade_image_shared if use_threads(len(ids), PARALLEL_POINTS) else _shade_image_here
     shade(ids, flat[:, 3:6], flat[:, 0:3], flat[:, 6:15], eye, view_dir, kinds, vectors, colors, ambient_light, background, out)  # fmt: skip
     return out.reshape(*polygon.shape, 3)
 

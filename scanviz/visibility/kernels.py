@@ -41,6 +41,7 @@ from ..raster.kernels import (
     move,
     put_edge,
 )
+from ..threads import use_threads
 
 depth_plane = njit(cache=True)(formulas.depth_plane)
 plane_depth = njit(cache=True, inline="always")(formulas.plane_depth)
@@ -59,7 +60,6 @@ STAT_FIELDS = 7
 # The per-sample test of `draw_span`: the z-buffer's, paint over (back to front), paint
 # under (front to back: only empty samples), or write where the decided id is this polygon.
 DEPTH, OVER, UNDER, TARGET = range(4)
-NO_CUTS = np.zeros((0, 11))
 WHOLE = 2**62  # rows -WHOLE..WHOLE: a whole polygon, no row left out
 TABLE_FIELDS = 9  # rows of an edge table (`scanviz.raster.kernels.edge_table`)
 SORTED_IN_PLACE = 64  # polygons up to this many edges sort their edge table by insertion
@@ -327,7 +327,9 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     band_start, listed = _bands(first_row, stop_row, height)
     largest = int(np.diff(offsets).max()) if len(offsets) > 1 else 0
     # Threads pay from about this much work: fewer listed polygons and pixels run here.
-    threads = numba.get_num_threads() if len(listed) + height * width > PARALLEL_WORK else 1
+    threads = (
+        numba.get_num_threads() if use_threads(len(listed) + height * width, PARALLEL_WORK) else 1
+    )
     depth = buffers.empty((height, width))
     ids = buffers.empty((height, width), np.int64)
     thread_stats = np.zeros((threads, STAT_FIELDS), np.int64)
@@ -349,8 +351,7 @@ def _polygon_rows(units, positions, z, offsets, scale, width, height):
     first_row = np.zeros(count, np.int64)
     stop_row = np.zeros(count, np.int64)
     skipped = np.ones(count, np.bool_)
-    shared = count > PARALLEL_WORK // 8 and numba.get_num_threads() > 1
-    rows = _polygon_rows_shared if shared else _polygon_rows_here
+    rows = _polygon_rows_shared if use_threads(count, PARALLEL_WORK // 8) else _polygon_rows_here
     rows(units, positions, z, offsets, scale, width, height, planes, first_row, stop_row, skipped)
     return planes, first_row, stop_row, skipped
 
