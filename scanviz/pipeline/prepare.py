@@ -12,11 +12,11 @@ from ..scene.faces import FaceCorners, face_corners
 from ..scene.model import Scene
 from ..shading import face_normals, material_array, vertex_normals
 from ..transform import clip_from_eye, clip_polygon, cull_faces, eye_from_world
-from ..transform.clip import ACCEPT, CLIP, REJECT
+from ..transform.clip import ACCEPT, CLIP, REJECT, face_verdicts
 from ..vectors import unit_vectors
 from ..visibility import ScreenPolygons
 from ..visibility.zbuffer import VALUE_LIMIT
-from .prepare_kernels import clip_coordinates, face_verdicts, in_range, screen_vertices, within
+from .prepare_kernels import clip_coordinates, in_range, screen_vertices, within
 from .result import RenderStats, Stage
 from .shade import _lit
 

@@ -1,4 +1,4 @@
-"""Compiled steps of `prepare` (numba): clip coordinates, trivial accept/reject, screen vertices.
+"""Compiled steps of `prepare` (numba): clip coordinates and outcodes, screen vertices, checks.
 
 One pass per step over an object's vertices, corners or faces, where numpy
 would make a temporary per operation. Both paths of `render` (traced and
@@ -14,28 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-ACCEPT, CLIP, REJECT = 0, 1, 2  # as `scanviz.transform.clip.VERDICTS`
-# Signed distances to the six clip planes (near, far, left, right, bottom, top), as
-# `scanviz.transform.clip.PLANE_DISTANCES`: rows . (x, y, z, w) >= 0 inside.
-
-
-@njit(cache=True, inline="always")
-def _outcode(x, y, z, w):
-    """Bit i set when the point is outside plane i (`scanviz.transform.clip.outcodes`)."""
-    code = 0
-    if z < 0:
-        code |= 1
-    if w - z < 0:
-        code |= 2
-    if x + w < 0:
-        code |= 4
-    if w - x < 0:
-        code |= 8
-    if y + w < 0:
-        code |= 16
-    if w - y < 0:
-        code |= 32
-    return code
+from ..transform.clip import outcode
 
 
 @njit(cache=True)
@@ -55,23 +34,8 @@ def clip_coordinates(world, matrix):
             and np.isfinite(clip[i, 2])
             and np.isfinite(clip[i, 3])
         )
-        codes[i] = _outcode(clip[i, 0], clip[i, 1], clip[i, 2], clip[i, 3])
+        codes[i] = outcode(clip[i, 0], clip[i, 1], clip[i, 2], clip[i, 3])
     return clip, codes, finite
-
-
-@njit(cache=True)
-def face_verdicts(codes, corners, starts):
-    """(F,) int8: ACCEPT when every corner is inside, REJECT when all share an outside bit, else CLIP."""
-    faces = starts.shape[0]
-    verdict = np.empty(faces, np.int8)
-    for f in range(faces):
-        stop = starts[f + 1] if f + 1 < faces else corners.shape[0]
-        every, some = -1, 0
-        for k in range(starts[f], stop):
-            every &= codes[corners[k]]
-            some |= codes[corners[k]]
-        verdict[f] = REJECT if every != 0 else (ACCEPT if some == 0 else CLIP)
-    return verdict
 
 
 @njit(cache=True, error_model="numpy")

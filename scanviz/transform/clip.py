@@ -26,6 +26,7 @@ of those passes is the replaceable step ``clip_against_plane`` (`scanviz.steps`)
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from .. import steps
 from ..trace.events import PolygonClipped
@@ -46,9 +47,22 @@ PLANE_DISTANCES = np.array(
 )
 
 
-def _outcodes(points: np.ndarray) -> np.ndarray:
-    outside = points @ PLANE_DISTANCES.T < 0
-    return outside.astype(np.int64) @ (1 << np.arange(len(CLIP_PLANES)))
+@njit(cache=True, inline="always")
+def outcode(x, y, z, w):
+    """Bit i set when (x, y, z, w) is outside plane ``CLIP_PLANES[i]`` (a row of `PLANE_DISTANCES`)."""
+    code = 0
+    for bit, distance in enumerate((z, w - z, w + x, w - x, w + y, w - y)):
+        if distance < 0:
+            code |= 1 << bit
+    return code
+
+
+@njit(cache=True)
+def _outcodes(points):  # pragma: no cover - compiled
+    codes = np.empty(points.shape[0], np.int64)
+    for i in range(points.shape[0]):
+        codes[i] = outcode(points[i, 0], points[i, 1], points[i, 2], points[i, 3])
+    return codes
 
 
 def outcodes(clip_points: object) -> np.ndarray:
@@ -95,25 +109,30 @@ def classify(clip_points: object, faces: object) -> np.ndarray:
     indices, starts = flatten_faces(faces, len(codes))
     if not len(starts):
         return np.empty(0, dtype="<U6")
-    return np.array(VERDICTS)[classify_codes(codes, indices, starts)]
+    return np.array(VERDICTS)[face_verdicts(codes, indices, starts)]
 
 
-VERDICTS = ("accept", "clip", "reject")  # `classify_codes` gives their indices
+VERDICTS = ("accept", "clip", "reject")  # `face_verdicts` gives their indices
 ACCEPT, CLIP, REJECT = range(3)
 
 
-def classify_codes(codes: np.ndarray, indices: np.ndarray, starts: np.ndarray) -> np.ndarray:
-    """(F,) int8 index into `VERDICTS` of each face (corners `indices`, face f from starts[f]).
+@njit(cache=True)
+def face_verdicts(codes, corners, starts):  # pragma: no cover - compiled
+    """(F,) int8 index into `VERDICTS` of each face (corners[starts[f]:starts[f + 1]]).
 
     `classify` without the strings, for the pipeline: `codes` are the
-    vertices' `outcodes`.
+    vertices' `outcodes`. ACCEPT when every corner is inside, REJECT when all
+    share an outside bit, else CLIP.
     """
-    if not len(starts):
-        return np.zeros(0, np.int8)
-    all_outside = np.bitwise_and.reduceat(codes[indices], starts)
-    any_outside = np.bitwise_or.reduceat(codes[indices], starts)
-    verdict = np.where(any_outside == 0, ACCEPT, CLIP).astype(np.int8)
-    verdict[all_outside != 0] = REJECT
+    faces = starts.shape[0]
+    verdict = np.empty(faces, np.int8)
+    for f in range(faces):
+        stop = starts[f + 1] if f + 1 < faces else corners.shape[0]
+        every, some = -1, 0
+        for k in range(starts[f], stop):
+            every &= codes[corners[k]]
+            some |= codes[corners[k]]
+        verdict[f] = REJECT if every != 0 else (ACCEPT if some == 0 else CLIP)
     return verdict
 
 

@@ -79,7 +79,7 @@ class Piece:
         extent is widened by a row each way; the cuts decide each sample.
         """
         if not self.cuts or not len(self.vertices):
-            return -(2**62), 2**62  # kernels.WHOLE; and an empty clip leaves it to the cuts
+            return -kernels.WHOLE, kernels.WHOLE  # an empty clip leaves it to the cuts
         ys = self.vertices[:, 1]
         return int(np.floor(ys.min())) - 1, int(np.ceil(ys.max())) + 2
 
