@@ -246,7 +246,7 @@ def fake_module(monkeypatch, name, **functions):
 
 def span_rule_grade(student, variant):
     """A real ExerciseGrade of span_rule's public cases answered by a known-wrong variant."""
-    from scanviz.exercises import core
+    from scanviz.exercises import core, verdict
     from scanviz.exercises.catalog import get
     from scanviz.exercises.results import ExerciseGrade
 
@@ -258,7 +258,7 @@ def span_rule_grade(student, variant):
         yours = core.run_case(exercise, function, case)
         reference = core.reference_outcome(exercise, case)
         variants = core.variant_outcomes(exercise, case)
-        verdicts.append(core.judge(exercise, case, yours, reference, variants=variants))
+        verdicts.append(verdict.judge(exercise, case, yours, reference, variants=variants))
     points = core.score(exercise, verdicts)
     return ExerciseGrade(student, "span_rule", points, 4, "failed", "", verdicts)
 

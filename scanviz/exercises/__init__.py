@@ -7,7 +7,7 @@ list|release|key new``, ``python -m scanviz grade``. Writing an exercise:
 """
 
 from .catalog import exercises, get
-from .check import check, check_function, public_inputs
+from .check import check, public_inputs
 from .core import Case, Exercise, Variant
 
 __all__ = [
@@ -15,7 +15,6 @@ __all__ = [
     "Exercise",
     "Variant",
     "check",
-    "check_function",
     "exercises",
     "get",
     "public_inputs",

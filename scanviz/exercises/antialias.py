@@ -115,7 +115,7 @@ def _sixteenth(rng: random.Random, low: float, high: float) -> float:
     return round(rng.uniform(low, high) * 16) / 16
 
 
-def _dislop_case(rng: random.Random) -> Case:
+def _dislop_case(rng: random.Random, feature: str | None = None) -> Case:
     """A line of 6 to 14 pixels along its major axis on a 16² raster, in any octant."""
     category = rng.choice(CATEGORIES)
     length = rng.randint(6, 14)
@@ -291,7 +291,6 @@ register(
             "from scanviz.widgets import dislop_stepper\n"
             "dislop_stepper(CASE['p0'], CASE['p1'], CASE['width'], CASE['height'])"
         ),
-        banned=("scanviz.antialias", "line_column", "line_column_compiled", "middle_column"),
     )
 )
 
@@ -412,7 +411,7 @@ def _post_segment(rng: random.Random, category: str) -> list:
     return [start, end]
 
 
-def _table_index_case(rng: random.Random) -> Case:
+def _table_index_case(rng: random.Random, feature: str | None = None) -> Case:
     category = rng.choice(POST_CATEGORIES)
     segments = [_post_segment(rng, category) for _ in range(rng.randint(1, 3))]
     edge = category == "polygon edges"
@@ -522,13 +521,6 @@ register(
             "CASE['segments'],\n"
             "                              kind=CASE['kind'], flags=CASE['flags'], trace=True)\n"
             "print(post_table(trace))"
-        ),
-        banned=(
-            "scanviz.antialias",
-            "table_indices",
-            "slope_index",
-            "distance_index",
-            "column_indices",
         ),
     )
 )

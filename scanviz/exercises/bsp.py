@@ -69,7 +69,7 @@ def _slides_case(order: str) -> dict:
     }
 
 
-def _bsp_case(rng: random.Random) -> Case:
+def _bsp_case(rng: random.Random, feature: str | None = None) -> Case:
     width, height = rng.randint(8, 16), rng.randint(8, 16)
     count = rng.randint(2, 6)
     polygons = [
@@ -202,6 +202,5 @@ EXERCISE = register(
             "bsp_stepper(case_polygons(CASE), CASE['width'], CASE['height'], root=options.root,\n"
             "            order=options.order, sequence=options.sequence)"
         ),
-        banned=("scanviz.visibility.bsp", "display_order"),
     )
 )

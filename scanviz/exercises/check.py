@@ -1,47 +1,28 @@
 """The check cell of a student notebook: public cases, diagnostics inline, a side-by-side trace.
 
-``check("span_rule")`` finds the student's function in the notebook's
-namespace, runs it on the public cases (and on `practice` random cases from
-a local seed, drawn like the hidden ones), and compares every run with the
-reference's. It runs in the student's own kernel: this is their machine and
-their code; grading (`scanviz.exercises.grading`) is the sandboxed one.
+``check("span_rule")`` takes the source of the answer cell the student last
+ran (the cell whose first line is ``# scanviz: answer span_rule``) and runs
+it exactly as grading does: alone, in a runner process of its own (jailed
+where bubblewrap can start, else plain), with the algorithm, the cases and
+the comparison here. So an answer that leans on another cell's import fails
+here too, and check and grade always agree. It runs the public cases (and,
+with ``practice=N``, N random cases drawn like the hidden ones from a local
+seed).
 """
 
 from __future__ import annotations
 
 import html
-import inspect
-from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..limits import wall_clock_limit
 from .catalog import get
-from .core import (
-    Case,
-    Exercise,
-    Outcome,
-    Verdict,
-    judge,
-    practice_cases,
-    reference_outcome,
-    run_case,
-    variant_outcomes,
-)
+from .core import Case, Exercise, practice_cases
+from .jail import Limits, Session, launch
+from .judging import CaseRun, References, judge_answer
+from .notebook import ANSWER_MARKER
 
-CASE_SECONDS = 20.0  # wall time of one case in the notebook before it is stopped
-
-
-class CaseTimeout(BaseException):
-    """A case ran longer than `CASE_SECONDS` (a BaseException: the runs' ``except Exception`` lets it by)."""
-
-
-@dataclass
-class CaseCheck:
-    """One checked case: the verdict and both outcomes (for the side-by-side view)."""
-
-    verdict: Verdict
-    yours: Outcome
-    reference: Outcome
+CASE_SECONDS = 20.0  # wall time of the checked cases before the runner is stopped
+_REFERENCES = References()  # the kernel's cache: a second check reuses the reference's runs
 
 
 @dataclass
@@ -49,9 +30,10 @@ class CheckReport:
     """What `check` found: shown as HTML with a trace comparison in a notebook, as text elsewhere."""
 
     exercise: Exercise
-    cases: list[CaseCheck]
+    cases: list[CaseRun]
     practice: int = 0
     problem: str = ""
+    status: str = ""
 
     @property
     def passed(self) -> int:
@@ -66,7 +48,7 @@ class CheckReport:
         if self.practice:
             practiced = [c for c in self.cases if c not in public]
             line += (
-                f", practice cases {sum(c.verdict.passed for c in practiced)} of {self.practice}"
+                f", practice cases {sum(c.verdict.passed for c in practiced)} of {len(practiced)}"
             )
         return line + " -- hidden cases are graded later"
 
@@ -75,10 +57,9 @@ class CheckReport:
         lines = [self.headline()]
         failing = [c.verdict for c in self.cases if not c.verdict.passed]
         lines.extend(v.describe() if i == 0 else v.summary() for i, v in enumerate(failing))
-        rerun = next((c for c in self.cases if not c.verdict.passed), None)
-        if rerun is not None:
+        if failing:
             lines.append(
-                f'rerun just this case: check("{self.exercise.id}", case={rerun.verdict.case.label!r})'
+                f'rerun just this case: check("{self.exercise.id}", case={failing[0].case.label!r})'
             )
         return "\n".join(lines)
 
@@ -100,9 +81,24 @@ class CheckReport:
             )
 
 
-def _answer_in(namespace: dict, exercise: Exercise) -> Callable | None:
-    function = namespace.get(exercise.answer)
-    return function if callable(function) else None
+def answer_cell(exercise_id: str, history: list[str] | None = None) -> str | None:
+    """The source of the last cell run whose first line is the exercise's answer marker.
+
+    `history` is the kernel's list of inputs (IPython's ``In``), by default
+    that of the running IPython; None if there is none or no such cell ran.
+    """
+    if history is None:
+        try:
+            from IPython import get_ipython
+        except ImportError:
+            return None
+        shell = get_ipython()
+        history = shell.user_ns.get("In", []) if shell is not None else []
+    marker = ANSWER_MARKER + exercise_id
+    for source in reversed(history):
+        if isinstance(source, str) and source.split("\n", 1)[0].rstrip() == marker:
+            return source
+    return None
 
 
 def _cases(exercise: Exercise, case: str | None, practice: int, seed: int | None) -> list[Case]:
@@ -119,41 +115,15 @@ def _cases(exercise: Exercise, case: str | None, practice: int, seed: int | None
     return cases + practiced
 
 
-def check_function(
-    exercise: Exercise,
-    function: Callable,
-    *,
-    case: str | None = None,
-    practice: int = 0,
-    seed: int | None = None,
-) -> CheckReport:
-    """Run `function` as `exercise`'s answer on its public (and practice) cases."""
-    checked = []
-    for item in _cases(exercise, case, practice, seed):
-        reference = reference_outcome(exercise, item)
-        try:
-            with wall_clock_limit(
-                CASE_SECONDS,
-                CaseTimeout,
-                f"stopped after {CASE_SECONDS:g} s: does a loop never end?",
-            ):
-                yours = run_case(exercise, function, item)
-        except CaseTimeout as error:
-            yours = Outcome(error=f"CaseTimeout: {error}")
-        verdict = judge(exercise, item, yours, reference, variants=variant_outcomes(exercise, item))
-        checked.append(CaseCheck(verdict, yours, reference))
-    return CheckReport(exercise, checked, practice)
-
-
 def check(
     exercise_id: str,
     *,
     case: str | None = None,
     practice: int = 0,
     seed: int | None = None,
-    namespace: dict | None = None,
+    source: str | None = None,
 ) -> CheckReport:
-    """Check the answer to `exercise_id` defined in the notebook (the caller's globals).
+    """Check the answer to `exercise_id`: the answer cell last run in this notebook.
 
     Parameters
     ----------
@@ -165,23 +135,36 @@ def check(
         Also run this many random cases drawn like the hidden ones (local seed).
     seed : int, optional
         The seed of the practice cases (random if None).
-    namespace : dict, optional
-        Where to find the answer (default: the caller's globals).
+    source : str, optional
+        The answer cell's source (default: the last run cell with the marker).
+
+    Examples
+    --------
+    >>> from scanviz.exercises import check, get
+    >>> print(check("span_rule", source=get("span_rule").solution).headline())
+    span_rule -- public cases 4 of 4 -- hidden cases are graded later
     """
     exercise = get(exercise_id)
     if not isinstance(practice, int) or isinstance(practice, bool) or not 0 <= practice <= 1000:
         raise ValueError(f"'practice' must be an int in 0..1000; got {practice!r}")
-    if namespace is None:
-        namespace = inspect.currentframe().f_back.f_globals
-    function = _answer_in(namespace, exercise)
-    if function is None:
+    cases = _cases(exercise, case, practice, seed)
+    if source is None:
+        source = answer_cell(exercise.id)
+    if source is None:
         return CheckReport(
             exercise,
             [],
-            problem=f"no function {exercise.answer!r} yet: run the answer cell first "
-            f"(its first line is '# scanviz: answer {exercise.id}')",
+            problem=f"no answer cell has run yet: run the cell whose first line is "
+            f"'{ANSWER_MARKER}{exercise.id}', then this one",
         )
-    return check_function(exercise, function, case=case, practice=practice, seed=seed)
+    limits = Limits(case_seconds=CASE_SECONDS)
+    with Session(limits, jailed=launch.unavailable() is None) as session:
+        judged = judge_answer(
+            session, exercise, source, [(c, False) for c in cases], _REFERENCES, CASE_SECONDS
+        )
+    ran = judged.status in ("passed", "failed", "error") and judged.runs
+    problem = "" if ran else f"{judged.status}: {judged.message}"
+    return CheckReport(exercise, judged.runs, practice, problem, judged.status)
 
 
 def public_inputs(exercise_id: str, index: int = 0) -> dict:

@@ -11,9 +11,8 @@ reference's, with fractions written as the slides write them:
 
 from __future__ import annotations
 
-import dataclasses
-import difflib
 import math
+from collections import defaultdict, deque
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -21,9 +20,20 @@ from fractions import Fraction
 import numpy as np
 
 from ..trace.events import Event, GridEdge
-from .plain import Opaque, Record
+from .jail.wire import Opaque, record_fields, record_name
 
-MISSING = object()  # a list item or field that one side lacks
+
+class _Missing:
+    """A list item or field that one side lacks (one object, also after pickling)."""
+
+    def __repr__(self) -> str:
+        return "MISSING"
+
+    def __reduce__(self) -> str:
+        return "MISSING"
+
+
+MISSING = _Missing()
 
 
 @dataclass(frozen=True)
@@ -61,6 +71,8 @@ def show(value: object, limit: int = 160, *, nested: bool = False) -> str:
 
     Inside records and lists (`nested`) a fraction is just ``17/5``.
     """
+    if isinstance(value, np.generic):
+        value = value.item()  # np.True_ reads as True
     if isinstance(value, Fraction):
         if value.denominator == 1:
             return str(value.numerator)
@@ -78,7 +90,7 @@ def show(value: object, limit: int = 160, *, nested: bool = False) -> str:
         inner = ", ".join(f"{k}={show(v, limit, nested=True)}" for k, v in fields.items())
         text = f"{value.kind}({inner})"
     elif fields is not None:
-        name = value.type if isinstance(value, Record) else type(value).__name__
+        name = record_name(value)
         inner = ", ".join(f"{k}={show(v, limit, nested=True)}" for k, v in fields.items())
         text = f"{name}({inner})"
     elif isinstance(value, list | tuple):
@@ -90,31 +102,19 @@ def show(value: object, limit: int = 160, *, nested: bool = False) -> str:
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
-def _fields(value: object) -> list[dataclasses.Field]:
-    return list(dataclasses.fields(value))  # type: ignore[arg-type]
-
-
-def _items(value: object) -> dict[str, object] | None:
-    """The named fields of a record-like value (Record, dataclass, named tuple), else None."""
-    if isinstance(value, Record):
-        return value.fields
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return {f.name: getattr(value, f.name) for f in _fields(value)}
-    if isinstance(value, tuple) and hasattr(value, "_fields"):
-        return value._asdict()
-    return None
+_items = record_fields  # the named fields of a record-like value, else None
 
 
 def _number(value: object) -> bool:
-    return isinstance(value, int | float | Fraction | np.integer | np.floating) and not isinstance(
-        value, bool | np.bool_
-    )
+    """Numbers and truth values (`numbers_equal` keeps bools apart from ints)."""
+    return isinstance(value, int | float | Fraction | np.integer | np.floating | np.bool_)
 
 
 def numbers_equal(yours: object, reference: object, rtol: float) -> bool:
     """Exact equality, or within `rtol` (relative, with an absolute floor of `rtol`) for floats."""
-    if isinstance(yours, bool) or isinstance(reference, bool):
-        return type(yours) is type(reference) and yours == reference
+    if isinstance(yours, bool | np.bool_) or isinstance(reference, bool | np.bool_):
+        both = isinstance(yours, bool | np.bool_) and isinstance(reference, bool | np.bool_)
+        return both and bool(yours) == bool(reference)
     if yours == reference:
         return True
     if isinstance(yours, float) and isinstance(reference, float) and math.isnan(yours):
@@ -252,61 +252,82 @@ def _key(event: object) -> tuple[str, str]:
 
 
 def aligned(yours: Sequence, reference: Sequence) -> Iterator[tuple[int, object, object]]:
-    """(reference index, yours, reference) pairs of two traces.
+    """(reference index, yours, reference) pairs of two traces, in linear time.
 
-    Equal events are matched first (a longest matching, as ``diff`` does);
-    in the gaps, events are paired by kind and place; an event only one
-    side has is paired with MISSING, so one extra event does not make every
-    later event differ.
+    Events are paired by kind and place (``span``, ``row 5``) walking both
+    traces together. Where the next two differ, the walk skips ahead on the
+    side whose skip is shorter to the next event of the other's key (an
+    event only one side has is paired with MISSING, so one extra event does
+    not make every later event differ); where neither key comes again, each
+    is a step the other lacks. Each trace's positions per key are visited
+    once, so the cost is linear in the two lengths.
     """
-    for tag, i0, i1, j0, j1 in _opcodes(_keys(yours), _keys(reference)):
-        if tag == "equal":
-            yield from ((j0 + k, yours[i0 + k], reference[j0 + k]) for k in range(i1 - i0))
+    keys_yours, keys_reference = [_key(e) for e in yours], [_key(e) for e in reference]
+    ahead_yours, ahead_reference = _positions(keys_yours), _positions(keys_reference)
+    i = j = 0
+    while i < len(yours) and j < len(reference):
+        if keys_yours[i] == keys_reference[j]:
+            yield j, yours[i], reference[j]
+            i, j = i + 1, j + 1
             continue
-        gap_yours, gap_reference = yours[i0:i1], reference[j0:j1]
-        keys = [_key(e) for e in gap_yours], [_key(e) for e in gap_reference]
-        for inner, a0, a1, b0, b1 in _opcodes(*keys):
-            if inner in ("equal", "replace") and a1 - a0 == b1 - b0:
-                yield from (
-                    (j0 + b0 + k, gap_yours[a0 + k], gap_reference[b0 + k]) for k in range(a1 - a0)
-                )
-                continue
-            yield from ((j0 + b0 + k, MISSING, gap_reference[b0 + k]) for k in range(b1 - b0))
-            yield from ((j0 + b1, gap_yours[a0 + k], MISSING) for k in range(a1 - a0))
+        next_in_yours = _next(ahead_yours[keys_reference[j]], i)
+        next_in_reference = _next(ahead_reference[keys_yours[i]], j)
+        if next_in_yours is None and next_in_reference is None:  # two steps the other lacks
+            yield j, MISSING, reference[j]
+            yield j + 1, yours[i], MISSING
+            i, j = i + 1, j + 1
+        elif next_in_reference is None or (
+            next_in_yours is not None and next_in_yours - i <= next_in_reference - j
+        ):
+            yield from ((j, yours[k], MISSING) for k in range(i, next_in_yours))
+            i = next_in_yours
+        else:
+            yield from ((k, MISSING, reference[k]) for k in range(j, next_in_reference))
+            j = next_in_reference
+    yield from ((len(reference), yours[k], MISSING) for k in range(i, len(yours)))
+    yield from ((k, MISSING, reference[k]) for k in range(j, len(reference)))
 
 
-def _keys(events: Sequence) -> list:
-    """The events themselves where they hash (frozen events do), else their full text."""
-    try:
-        for event in events:
-            hash(event)
-    except TypeError:
-        return [show(e, 10**9) for e in events]
-    return list(events)
+def _positions(keys: list) -> defaultdict:
+    positions: defaultdict = defaultdict(deque)
+    for index, key in enumerate(keys):
+        positions[key].append(index)
+    return positions
 
 
-def _opcodes(a: list, b: list) -> list[tuple]:
-    return difflib.SequenceMatcher(None, a, b, autojunk=False).get_opcodes()
+def _next(positions: deque, start: int) -> int | None:
+    """The first position >= `start` (earlier ones are dropped: the walk never goes back)."""
+    while positions and positions[0] < start:
+        positions.popleft()
+    return positions[0] if positions else None
+
+
+def traces_equal(yours: Sequence, reference: Sequence, rtol: float = 0.0) -> bool:
+    """Whether two traces agree event by event (within `rtol` for floats)."""
+    return len(yours) == len(reference) and all(
+        a == b or first_difference(a, b, rtol) is None
+        for a, b in zip(yours, reference, strict=True)
+    )
 
 
 def trace_difference(
     yours: Sequence[Event], reference: Sequence[Event], rtol: float = 0.0
 ) -> TraceDifference | None:
-    """Compare two event sequences event by event; None if they agree."""
+    """Compare two event sequences event by event; None if they agree. Linear in their lengths."""
     if len(yours) == len(reference) and all(a == b for a, b in zip(yours, reference, strict=True)):
         return None  # the common case, without aligning
     first = None
-    later: list[str] = []
+    later: dict[str, None] = {}  # places in order, each once
     for index, mine, theirs in aligned(yours, reference):
         difference = first_difference(mine, theirs, rtol)
         if difference is None:
             continue
         event = theirs if theirs is not MISSING else mine
-        place = where(event)
+        place = where(event) if isinstance(event, Event) else ""
         if first is None:
-            first = (index, event.kind, place, difference)
-        elif place and place != first[2] and place not in later:
-            later.append(place)
+            first = (index, getattr(event, "kind", type(event).__name__), place, difference)
+        elif place and place != first[2]:
+            later.setdefault(place)
     if first is None:
         return None
     index, kind, place, difference = first

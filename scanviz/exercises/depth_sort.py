@@ -94,7 +94,7 @@ def _rotated_bars(rng: random.Random, size: int) -> list:
     ]
 
 
-def _depth_sort_case(rng: random.Random) -> Case:
+def _depth_sort_case(rng: random.Random, feature: str | None = None) -> Case:
     width, height = rng.randint(10, 16), rng.randint(10, 16)
     category = rng.choice(("sloped polygons", "touching rectangles", "cyclic bars", "mixed"))
     if category == "cyclic bars":
@@ -279,6 +279,5 @@ register(
             "from scanviz.widgets.depth_sort import depth_sort_stepper\n"
             "depth_sort_stepper(case_polygons(CASE), CASE['width'], CASE['height'])"
         ),
-        banned=("scanviz.visibility.depth_sort", "projections_overlap", "convex_hull"),
     )
 )

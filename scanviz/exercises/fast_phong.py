@@ -223,7 +223,7 @@ def _normals_about(rng: random.Random, centre, tilt: float) -> list:
     ]
 
 
-def _fast_phong_case(rng: random.Random) -> Case:
+def _fast_phong_case(rng: random.Random, feature: str | None = None) -> Case:
     category = rng.choice(CATEGORIES)
     specular = SPECULAR.get(category) or rng.choice(("phong", "blinn"))
     n = rng.choice((6, 8, 16)) * (4 if specular == "blinn" else 1)
@@ -381,15 +381,6 @@ register(
             "                   width=CASE['width'], height=CASE['height'], "
             "expansion=CASE['expansion'])"
         ),
-        banned=(
-            "scanviz.shading.lut",
-            "specular_level",
-            "lut_level",
-            "lut_level_coherent",
-            "lut_levels",
-            "lut_level_compiled",
-            "searchsorted",
-        ),
     )
 )
 
@@ -474,6 +465,5 @@ register(
             "                   width=CASE['width'], height=CASE['height'], "
             "expansion=CASE['expansion'])"
         ),
-        banned=("scanviz.shading.fast_phong", "forward_difference", "forward_differences"),
     )
 )

@@ -1,44 +1,42 @@
 """Grade a folder of student notebooks against the course key, or check one notebook.
 
-`find_submissions` finds one notebook per student; `grade_submissions` runs
-each in the sandbox (`scanviz.exercises.sandbox`: a fresh subprocess per
-submission that sees only the answer sources and the case inputs), computes
-the reference and the known-wrong variants' outcomes here, in the grading
-process, once per case, and judges every case. `check_notebook` does the
-same with the public cases only (``python -m scanviz check``).
+`find_submissions` finds one notebook (or folder of notebooks) per student.
+`grade_submissions` grades each in turn, `jobs` at once in separate judging
+processes: for each exercise the answer cell runs in the student's jailed
+runner (`scanviz.exercises.jail`; one per submission), and everything else
+happens in the judging process -- the reference, the known-wrong variants,
+the hidden cases from the key, the algorithm the answer is plugged into,
+the comparison and the score (`scanviz.exercises.judging`). `check_notebook`
+does the same with the public cases only (``python -m scanviz check``).
+
+A class can be split across machines with one key: ``shard=(k, n)`` grades
+the submissions whose student id hashes to part k of n, and
+`scanviz.exercises.report.merge_reports` joins the parts.
 
 Scores: an exercise's points times the fraction of its cases that pass
-(public and hidden alike). An answer that times out, runs out of memory,
-does what is not allowed, crashes, is not valid Python or does not define the
-function scores 0 with that status. Nothing a submission does stops the
-batch. The same key and the same submissions give the same grades.
+(public and hidden alike); the statuses of `judging.ZERO_STATUSES` score 0.
+Nothing a submission does stops the batch, and the same key and the same
+submissions give the same grades.
 """
 
 from __future__ import annotations
 
 import difflib
-import json
+import hashlib
+import multiprocessing
 import os
-import threading
 import time
-from collections.abc import Iterable, Iterator, Mapping
-from concurrent.futures import ThreadPoolExecutor
+from collections.abc import Iterable
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..progress import progress as progress_bar
 from .catalog import exercises as catalog
 from .catalog import get
-from .core import (
-    Case,
-    Exercise,
-    Outcome,
-    Verdict,
-    builtin_error_name,
-    hidden_cases,
-    judge,
-    reference_outcome,
-    variant_outcomes,
-)
+from .core import Case, Exercise, hidden_cases
+from .jail import JailStopped, JailUnavailable, Limits, Session, launch
+from .judging import ZERO_STATUSES, References, judge_answer
 from .key import CourseKey, load_key
 from .notebook import (
     ANSWER_MARKER,
@@ -48,11 +46,7 @@ from .notebook import (
     merge_answers,
     read_notebook,
 )
-from .plain import from_plain, to_plain
 from .results import ExerciseGrade, StudentGrade
-from .sandbox import Limits, WorkerResult, run_submission
-
-_ZERO_STATUSES = ("syntax error", "not defined", "timeout", "memory", "not allowed", "crashed")
 
 
 def find_submissions(folder: str | os.PathLike) -> list[tuple[str, Path]]:
@@ -88,180 +82,112 @@ def _notebooks(folder: Path) -> list[Path]:
     )
 
 
-class _References:
-    """The reference's and the variants' outcomes of each case, computed once (thread-safe)."""
+def in_shard(student: str, shard: tuple[int, int]) -> bool:
+    """Whether `student` is graded by part k of n (a hash of the id: the same on every machine).
 
-    def __init__(self) -> None:
-        self._lock = threading.Lock()
-        self._references: dict[tuple[str, str], Outcome] = {}
-        self._variants: dict[tuple[str, str], dict[str, Outcome]] = {}
-
-    @staticmethod
-    def _key(exercise: Exercise, case: Case) -> tuple[str, str]:
-        return exercise.id, json.dumps(to_plain(dict(case.inputs)), sort_keys=True)
-
-    def reference(self, exercise: Exercise, case: Case) -> Outcome:
-        key = self._key(exercise, case)
-        with self._lock:
-            if key not in self._references:
-                self._references[key] = reference_outcome(exercise, case)
-            return self._references[key]
-
-    def variants(self, exercise: Exercise, case: Case) -> dict[str, Outcome]:
-        key = self._key(exercise, case)
-        with self._lock:
-            if key not in self._variants:
-                self._variants[key] = variant_outcomes(exercise, case)
-            return self._variants[key]
+    >>> sum(in_shard(f"s{i}", (1, 2)) for i in range(100)) + sum(in_shard(f"s{i}", (2, 2)) for i in range(100))
+    100
+    """
+    part, parts = shard
+    digest = hashlib.sha256(student.encode("utf-8", "surrogatepass")).digest()
+    return int.from_bytes(digest[:8], "big") % parts == part - 1
 
 
-def _as_sent(case: Case) -> Case:
-    """`case` with its inputs as the worker reads them (tuples become lists, ...)."""
-    return Case(case.label, from_plain(to_plain(dict(case.inputs))), case.category)
+@dataclass(frozen=True)
+class Plan:
+    """What grading needs, as plain values (each judging process makes its `Grader` from it)."""
+
+    exercises: tuple[str, ...]
+    points: dict[str, int]
+    hidden: dict[str, int]
+    secret: str
+    per_student: bool
+    limits: Limits
+    jailed: bool
 
 
-def _error_message(verdicts: list[Verdict]) -> str:
-    """What the answer raised, quoting a public case's error only (hidden inputs stay hidden)."""
-    raised = [v for v in verdicts if v.error]
-    public = next((v for v in raised if not v.hidden), None)
-    if public is not None:
-        return f"your code raised {public.error} (in {len(raised)} of {len(verdicts)} cases)"
-    kind = builtin_error_name(raised[0].error) if raised else "an exception"
-    return f"your code raised {kind} in {len(raised)} of {len(verdicts)} cases (hidden ones)"
+class Grader:
+    """Grades submissions one at a time; keeps the reference's outcomes of every case it met."""
 
-
-class _Grader:
-    """Everything one grading run shares: the exercises, the limits, the case cache."""
-
-    def __init__(
-        self,
-        chosen: list[Exercise],
-        points: dict[str, int],
-        limits: Limits | CourseKey,
-        hidden: dict[str, int],
-        secret: str = "",
-        per_student: bool = False,
-    ) -> None:
-        self.exercises = chosen
-        self.points = points
-        self.limits = limits
-        self.hidden = hidden
-        self.secret = secret
-        self.per_student = per_student
-        self.cache = _References()
+    def __init__(self, plan: Plan) -> None:
+        self.plan = plan
+        self.exercises = [get(e) for e in plan.exercises]
+        self.references = References()
 
     def cases(self, exercise: Exercise, student: str) -> list[tuple[Case, bool]]:
         """(case, hidden) of `exercise` for `student`: the public cases, then the hidden ones."""
-        public = [(_as_sent(c), False) for c in exercise.public]
-        count = self.hidden.get(exercise.id, 0)
+        public = [(c, False) for c in exercise.public]
+        count = self.plan.hidden.get(exercise.id, 0)
         if not count:
             return public
-        who = student if self.per_student else ""
-        hidden = hidden_cases(exercise, self.secret, count, who)
-        return public + [(_as_sent(c), True) for c in hidden]
+        who = student if self.plan.per_student else ""
+        return public + [(c, True) for c in hidden_cases(exercise, self.plan.secret, count, who)]
 
-    def grade(self, student: str, path: Path, folder: Path | None) -> StudentGrade:
+    def grade(self, student: str, path: Path) -> StudentGrade:
         """One submission's grades, timed; nothing the submission holds or does raises."""
         started = time.perf_counter()
-        grade = self._grade(student, path, folder)
-        grade.seconds = time.perf_counter() - started
-        return grade
-
-    def _grade(self, student: str, path: Path, folder: Path | None) -> StudentGrade:
         grade = StudentGrade(student, str(path))
         answers, problem = _read_answers(path)
         if answers is None:
             grade.grades = [
                 self._zero(student, e, "malformed notebook", problem) for e in self.exercises
             ]
-            return grade
-        cases = {e.id: self.cases(e, student) for e in self.exercises}
-        try:
-            ran = run_submission(
-                answers, {k: [c for c, _ in v] for k, v in cases.items()}, self.limits, folder
-            )
-        except OSError as error:  # the machine, not the submission: no temporary folder, ...
-            ran = {
-                e: WorkerResult("crashed", f"the grader could not run it: {error}") for e in cases
-            }
-        for exercise in self.exercises:
-            grade.grades.append(
-                self._exercise(student, exercise, answers, cases[exercise.id], ran.get(exercise.id))
-            )
+        else:
+            session = Session(self.plan.limits, jailed=self.plan.jailed)
+            try:
+                grade.grades = [
+                    self._exercise(session, student, e, answers) for e in self.exercises
+                ]
+            finally:
+                session.close()
+        grade.seconds = time.perf_counter() - started
         return grade
 
     def _zero(self, student: str, exercise: Exercise, status: str, message: str) -> ExerciseGrade:
-        return ExerciseGrade(
-            student, exercise.id, 0.0, float(self.points[exercise.id]), status, message
-        )
+        points = float(self.plan.points[exercise.id])
+        return ExerciseGrade(student, exercise.id, 0.0, points, status, message)
 
     def _exercise(
-        self,
-        student: str,
-        exercise: Exercise,
-        answers: Answers,
-        cases: list[tuple[Case, bool]],
-        result: WorkerResult | None,
+        self, session: Session, student: str, exercise: Exercise, answers: Answers
     ) -> ExerciseGrade:
-        if result is None:
+        source = answers.answers.get(exercise.id)
+        if source is None:
             problem = answers.problems.get(exercise.id)
-            if exercise.id in answers.duplicated:
-                return self._zero(student, exercise, "duplicate answer", problem)
             marker = ANSWER_MARKER + exercise.id
             return self._zero(
                 student, exercise, "no answer", problem or f"no code cell starts with {marker!r}"
             )
+        cases = self.cases(exercise, student)
         try:
-            verdicts = [
-                self._judge(exercise, case, hidden, outcome)
-                for (case, hidden), outcome in zip(cases, result.outcomes, strict=False)
-            ]
-        except Exception as error:  # a worker that sent odd but well-formed data
-            return self._zero(
-                student, exercise, "grader error", f"its outcomes cannot be compared: {error}"
+            judged = judge_answer(
+                session, exercise, source, cases, self.references, self.plan.limits.case_seconds
             )
-        points = float(self.points[exercise.id])
-        if result.status in _ZERO_STATUSES:
-            grade = ExerciseGrade(student, exercise.id, 0.0, points, result.status, result.message)
-            grade.verdicts = verdicts
-            return grade
-        passed = sum(v.passed for v in verdicts)
-        score = points * passed / len(cases) if cases else 0.0
-        if passed == len(cases):
-            status, message = "passed", ""
-        elif result.status == "error":
-            status, message = "error", _error_message(verdicts)
+        except JailStopped as stopped:  # the runner could not even start
+            judged_status, message, runs, output = stopped.status, stopped.message, [], ""
         else:
-            first = next((v for v in verdicts if not v.passed), None)
-            status = "failed"
-            message = f"{len(cases) - passed} of {len(cases)} cases differ from the reference"
-            if first is not None and first.variant is not None:
-                message += f"; likely cause: {first.variant.hint}"
-        grade = ExerciseGrade(student, exercise.id, score, points, status, message)
-        grade.verdicts = verdicts
-        return grade
-
-    def _judge(self, exercise: Exercise, case: Case, hidden: bool, outcome: Outcome):
-        reference = self.cache.reference(exercise, case)
-        variants = _LazyVariants(self.cache, exercise, case)
-        return judge(exercise, case, outcome, reference, hidden=hidden, variants=variants)
-
-
-class _LazyVariants(Mapping):
-    """The variants' outcomes of a case, computed (once, in the cache) only if `judge` reads them:
-    a case that passes never needs them."""
-
-    def __init__(self, cache: _References, exercise: Exercise, case: Case) -> None:
-        self.cache, self.exercise, self.case = cache, exercise, case
-
-    def __len__(self) -> int:
-        return len(self.exercise.variants)
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self.cache.variants(self.exercise, self.case))
-
-    def __getitem__(self, name: str) -> Outcome:
-        return self.cache.variants(self.exercise, self.case)[name]
+            judged_status, message, runs, output = (
+                judged.status,
+                judged.message,
+                judged.runs,
+                judged.output,
+            )
+        points = float(self.plan.points[exercise.id])
+        passed = sum(r.verdict.passed for r in runs)
+        zero = judged_status in ZERO_STATUSES or not cases
+        score = 0.0 if zero else points * passed / len(cases)
+        note = answers.notes.get(exercise.id)
+        if note:
+            message = f"{message} ({note})" if message else note
+        return ExerciseGrade(
+            student,
+            exercise.id,
+            score,
+            points,
+            judged_status,
+            message,
+            [r.verdict for r in runs],
+            output,
+        )
 
 
 def _read_answers(path: Path) -> tuple[Answers | None, str]:
@@ -298,6 +224,40 @@ def _chosen(key: CourseKey, exercises: Iterable[str] | None) -> list[Exercise]:
     return [get(e) for e in sorted(set(ids), key=order.__getitem__)]
 
 
+def jail_or_refuse(jailed: bool, *private: str | os.PathLike) -> None:
+    """Refuse to grade if the jail cannot start, or if it would show one of the `private` paths.
+
+    Raises `JailUnavailable` (saying why, and that ``--no-jail`` exists for
+    submissions one trusts) or ValueError.
+    """
+    if not jailed:
+        return
+    reason = launch.unavailable()
+    if reason is not None:
+        raise JailUnavailable(
+            f"grading runs each answer in a jail, which cannot start here: {reason}. "
+            "Pass --no-jail (jailed=False) only for submissions you trust"
+        )
+    for path in private:
+        if launch.visible(path):
+            raise ValueError(
+                f"{os.fspath(path)!r} lies inside what the jail shows of this machine "
+                "(the system's and Python's folders): move it elsewhere"
+            )
+
+
+_GRADER: Grader | None = None  # the judging process's grader
+
+
+def _start_judge(plan: Plan) -> None:
+    global _GRADER
+    _GRADER = Grader(plan)
+
+
+def _judge(submission: tuple[str, Path]) -> StudentGrade:
+    return _GRADER.grade(*submission)
+
+
 def grade_submissions(
     folder: str | os.PathLike,
     key: CourseKey | str | os.PathLike,
@@ -305,50 +265,71 @@ def grade_submissions(
     jobs: int = 1,
     exercises: Iterable[str] | None = None,
     progress: bool = True,
+    shard: tuple[int, int] | None = None,
+    jailed: bool = True,
 ) -> list[StudentGrade]:
     """Grade every submission in `folder` (see `find_submissions`) with the course `key`.
 
-    `jobs` submissions run at once (each in its own worker process);
-    `exercises` restricts the grading to some of the key's exercises;
-    `progress` shows a bar over the students. The result is in student order.
+    `jobs` submissions are graded at once, each in a judging process of its
+    own; `exercises` restricts the grading to some of the key's exercises;
+    `shard` = (k, n) grades only part k of n of the students (`in_shard`);
+    `progress` shows a bar over the students. Unless `jailed` is False, the
+    answers run in the jail, and grading refuses to start without one
+    (`jail_or_refuse`). The result is in student order.
     """
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ValueError(f"'jobs' must be an integer >= 1; got {jobs!r}")
+    if shard is not None and not (
+        isinstance(shard, tuple) and len(shard) == 2 and 1 <= shard[0] <= shard[1]
+    ):
+        raise ValueError(f"'shard' must be (k, n) with 1 <= k <= n; got {shard!r}")
+    private = [folder] if isinstance(key, CourseKey) else [folder, key]
     key = key if isinstance(key, CourseKey) else load_key(key)
+    jail_or_refuse(jailed, *private)
     chosen = _chosen(key, exercises)
     submissions = find_submissions(folder)
-    grader = _Grader(
-        chosen,
+    if shard is not None:
+        submissions = [s for s in submissions if in_shard(s[0], shard)]
+    plan = Plan(
+        tuple(e.id for e in chosen),
         {e.id: key.exercises[e.id].points for e in chosen},
-        key,
         {e.id: key.exercises[e.id].hidden_cases for e in chosen},
         key.secret,
         key.per_student,
+        Limits(key.cpu_seconds, key.memory_mb, key.case_seconds),
+        jailed,
     )
-
-    def grade_one(submission: tuple[str, Path]) -> StudentGrade:
-        student, path = submission
-        top = Path(folder) / path.relative_to(folder).parts[0]  # the student's folder or file
-        return grader.grade(student, path, top)
-
     with progress_bar(len(submissions), "students", enabled=progress) as bar:
-        with ThreadPoolExecutor(max_workers=jobs) as pool:
-            futures = [pool.submit(grade_one, s) for s in submissions]
+        if jobs == 1 or len(submissions) <= 1:
+            grader = Grader(plan)
             grades = []
-            for future in futures:
-                grades.append(future.result())
+            for submission in submissions:
+                grades.append(grader.grade(*submission))
                 bar.update(1)
-    return grades
+            return grades
+        context = multiprocessing.get_context("spawn")
+        with ProcessPoolExecutor(
+            jobs, mp_context=context, initializer=_start_judge, initargs=(plan,)
+        ) as pool:
+            grades = []
+            for grade in pool.map(_judge, submissions):
+                grades.append(grade)
+                bar.update(1)
+            return grades
 
 
 def check_notebook(
-    path: str | os.PathLike, exercises: Iterable[str] | None = None, limits: Limits | None = None
+    path: str | os.PathLike,
+    exercises: Iterable[str] | None = None,
+    limits: Limits | None = None,
+    jailed: bool | None = None,
 ) -> StudentGrade:
-    """The public cases of `path`'s answers, in the sandbox (``python -m scanviz check``).
+    """The public cases of `path`'s answers, as grading runs them (``python -m scanviz check``).
 
     `exercises` (ids) are checked, by default those the notebook has answer
-    cells (or marker problems) for. A notebook that cannot be read raises
-    `NotebookError`; the student id is the file's stem.
+    cells (or marker problems) for. The answers run in the jail where it can
+    start (`jailed` None), else in a plain runner. A notebook that cannot be
+    read raises `NotebookError`; the student id is the file's stem.
     """
     path = Path(path)
     answers = find_answers(read_notebook(path))
@@ -359,5 +340,13 @@ def check_notebook(
         else [e for e in list(answers.answers) + list(answers.problems) if e in known]
     )
     chosen = [get(e) for e in dict.fromkeys(ids)]
-    grader = _Grader(chosen, {e.id: e.points for e in chosen}, limits or Limits(), {})
-    return grader.grade(path.stem, path, path.parent)
+    plan = Plan(
+        tuple(e.id for e in chosen),
+        {e.id: e.points for e in chosen},
+        {},
+        "",
+        False,
+        limits or Limits(),
+        launch.unavailable() is None if jailed is None else jailed,
+    )
+    return Grader(plan).grade(path.stem, path)

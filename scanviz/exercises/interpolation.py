@@ -81,7 +81,7 @@ def _color(rng: random.Random) -> list[float]:
 CATEGORIES = ("one polygon", "overlapping polygons", "wide spans", "perspective-correct")
 
 
-def _interpolation_case(rng: random.Random) -> Case:
+def _interpolation_case(rng: random.Random, feature: str | None = None) -> Case:
     category = rng.choice(CATEGORIES)
     count = 2 if category == "overlapping polygons" else 1
     polygons = [_polygon(rng, category == "wide spans") for _ in range(count)]
@@ -229,6 +229,5 @@ register(
             "perspective=CASE['inv_w'] is not None, trace=Recorder(kinds))\n"
             "Stepper(result.trace, [InterpolationView(result.trace, result.values.clip(0, 1))])"
         ),
-        banned=("scanviz.raster.interpolate", "span_step", "compensated_step"),
     )
 )

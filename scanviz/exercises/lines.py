@@ -56,7 +56,7 @@ def _pixel_of_call(index: int, trace: list) -> str:
     return f"call {index + 1}"
 
 
-def _line_case(rng: random.Random) -> Case:
+def _line_case(rng: random.Random, feature: str | None = None) -> Case:
     """A line inside a SIZE x SIZE raster in any octant; a third run exactly through midpoints."""
     while True:
         x0, y0 = rng.randrange(SIZE), rng.randrange(SIZE)
@@ -185,7 +185,6 @@ register(
             "from scanviz.widgets import line_stepper\n"
             "line_stepper(CASE['x0'], CASE['y0'], CASE['x1'], CASE['y1'])"
         ),
-        banned=("scanviz.raster.lines", "midpoint_step"),
     )
 )
 
@@ -341,6 +340,5 @@ register(
             "from scanviz.widgets import line_stepper\n"
             "line_stepper(CASE['x0'], CASE['y0'], CASE['x1'], CASE['y1'])"
         ),
-        banned=("scanviz.raster.lines", "midpoint_line"),
     )
 )

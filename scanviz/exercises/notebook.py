@@ -1,23 +1,24 @@
 """Read a student's notebook and find its answers by their marker lines.
 
 An answer cell is a code cell whose first line is exactly
-``# scanviz: answer <exercise-id>`` (trailing whitespace is tolerated); a
-setup cell is a code cell whose first line is ``# scanviz: setup``. The
+``# scanviz: answer <exercise-id>`` (trailing whitespace is tolerated). The
 marker, not the cell's position or metadata, is how the grader finds an
 answer, so it survives copying, reordering and re-downloading the notebook.
-A marker in a markdown cell is ignored.
+A marker in a markdown cell is ignored. Only the answer cell is graded: it
+runs alone, so it imports what it uses itself. If several cells carry the
+same marker, the last one is graded and the feedback says so.
 
 Examples
 --------
 >>> from nbformat import v4
 >>> notebook = v4.new_notebook(cells=[
 ...     v4.new_markdown_cell("# scanviz: answer span_rule"),
-...     v4.new_code_cell("# scanviz: setup\\nimport math"),
+...     v4.new_code_cell("import math"),
 ...     v4.new_code_cell("# scanviz: answer span_rule\\ndef span_rule(crossings, rule): ..."),
 ... ])
 >>> found = find_answers(notebook)
->>> sorted(found.answers), len(found.setup), found.problems
-(['span_rule'], 1, {})
+>>> sorted(found.answers), found.notes, found.problems
+(['span_rule'], {}, {})
 """
 
 from __future__ import annotations
@@ -32,7 +33,6 @@ import nbformat
 from ..limits import json_nesting, read_bounded
 
 ANSWER_MARKER = "# scanviz: answer "
-SETUP_MARKER = "# scanviz: setup"
 MAX_NESTING = 100  # JSON levels; a notebook's deepest (widget state) is far less
 
 
@@ -45,16 +45,15 @@ class Answers:
     """What a notebook holds for the grader.
 
     ``answers`` maps an exercise id to its answer cell's whole source (marker
-    line included, so line numbers match the cell); ``setup`` the setup cells'
-    sources in notebook order; ``problems`` an exercise id to a message
-    (duplicated marker, unknown id, a marker that is almost right);
-    ``duplicated`` the ids whose marker starts more than one cell.
+    line included, so line numbers match the cell); ``notes`` an answered
+    exercise id to what the grader chose (which of several marked cells it
+    graded); ``problems`` an unanswered id to why (an unknown id, a marker
+    that is almost right).
     """
 
     answers: dict[str, str] = field(default_factory=dict)
-    setup: list[str] = field(default_factory=list)
+    notes: dict[str, str] = field(default_factory=dict)
     problems: dict[str, str] = field(default_factory=dict)
-    duplicated: set[str] = field(default_factory=set)
 
 
 def read_notebook(path: str | os.PathLike) -> nbformat.NotebookNode:
@@ -116,7 +115,7 @@ def _source(cell: dict) -> str:
 
 
 def find_answers(notebook: dict) -> Answers:
-    """The answer and setup cells of `notebook`, found by their first lines (module docstring)."""
+    """The answer cells of `notebook`, found by their first lines (module docstring)."""
     from .catalog import exercises
 
     known = [e.id for e in exercises()]
@@ -127,18 +126,14 @@ def find_answers(notebook: dict) -> Answers:
             continue
         source = _source(cell)
         first = source.split("\n", 1)[0].rstrip()
-        if first == SETUP_MARKER:
-            found.setup.append(source)
-        elif first.startswith(ANSWER_MARKER):
+        if first.startswith(ANSWER_MARKER):
             exercise_id = first[len(ANSWER_MARKER) :].strip()
             cells.setdefault(exercise_id, []).append(index)
-            found.answers.setdefault(exercise_id, source)
+            found.answers[exercise_id] = source  # the last marked cell wins
         else:
             _near_miss(source, index, known, found.problems)
     for exercise_id, where in cells.items():
-        if exercise_id in known and len(where) == 1:
-            found.problems.pop(exercise_id, None)  # an almost-marker elsewhere does not matter
-        elif exercise_id not in known:
+        if exercise_id not in known:
             del found.answers[exercise_id]
             close = difflib.get_close_matches(exercise_id, known, n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
@@ -146,13 +141,13 @@ def find_answers(notebook: dict) -> Answers:
                 f"cell {where[0]} starts with {(ANSWER_MARKER + exercise_id)!r}: "
                 f"unknown exercise {exercise_id!r}{hint}"
             )
-        elif len(where) > 1:
-            del found.answers[exercise_id]
-            found.duplicated.add(exercise_id)
+            continue
+        found.problems.pop(exercise_id, None)  # an almost-marker elsewhere does not matter
+        if len(where) > 1:
             numbers = ", ".join(map(str, where[:-1])) + f" and {where[-1]}"
-            found.problems[exercise_id] = (
-                f"exercise {exercise_id!r}: {len(where)} cells start with "
-                f"{(ANSWER_MARKER + exercise_id)!r} (cells {numbers}); keep one"
+            found.notes[exercise_id] = (
+                f"{len(where)} cells start with {(ANSWER_MARKER + exercise_id)!r} "
+                f"(cells {numbers}): the last one, cell {where[-1]}, was graded"
             )
     return found
 
@@ -172,28 +167,30 @@ def _near_miss(source: str, index: int, known: list[str], problems: dict[str, st
 
 
 def merge_answers(parts: list[tuple[str, Answers]]) -> Answers:
-    """The answers of several notebooks of one student, (name, answers) each.
+    """The answers of several notebooks of one student, (name, answers) each, in name order.
 
-    An exercise answered in two notebooks is a duplicate, named with both
-    notebooks; setup cells run in the order of the notebooks.
+    An exercise answered in two notebooks is graded from the one named as
+    the released notebook of that exercise (``NN_<id>.ipynb``) if there is
+    one, else from the last, and the feedback says so.
     """
     merged = Answers()
-    where: dict[str, str] = {}
+    found: dict[str, list[tuple[str, Answers]]] = {}
     for name, answers in parts:
-        merged.setup.extend(answers.setup)
-        merged.duplicated |= answers.duplicated
         for exercise_id, problem in answers.problems.items():
             merged.problems.setdefault(exercise_id, f"{name}: {problem}")
-        for exercise_id, source in answers.answers.items():
-            if exercise_id in where:
-                merged.duplicated.add(exercise_id)
-                merged.problems[exercise_id] = (
-                    f"exercise {exercise_id!r} is answered in two notebooks "
-                    f"({where[exercise_id]} and {name}); keep one"
-                )
-                continue
-            where[exercise_id] = name
-            merged.answers[exercise_id] = source
-    for exercise_id in merged.duplicated:  # as in one notebook: a duplicate is not graded
-        merged.answers.pop(exercise_id, None)
+        for exercise_id in answers.answers:
+            found.setdefault(exercise_id, []).append((name, answers))
+    for exercise_id, places in found.items():
+        released = [p for p in places if p[0].endswith(f"_{exercise_id}.ipynb")]
+        name, answers = (released or places)[-1]
+        merged.answers[exercise_id] = answers.answers[exercise_id]
+        merged.problems.pop(exercise_id, None)
+        if len(places) > 1:
+            names = ", ".join(p[0] for p in places)
+            merged.notes[exercise_id] = (
+                f"exercise {exercise_id!r} is answered in {len(places)} notebooks ({names}): "
+                f"the one in {name} was graded"
+            )
+        elif exercise_id in answers.notes:
+            merged.notes[exercise_id] = f"{name}: {answers.notes[exercise_id]}"
     return merged

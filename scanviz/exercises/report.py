@@ -44,9 +44,9 @@ from pathlib import Path
 import numpy as np
 
 from .catalog import exercises
-from .core import Verdict, builtin_error_name
 from .key import CourseKey
 from .results import STATUSES, ExerciseGrade, StudentGrade
+from .verdict import Verdict, builtin_error_name
 
 CSV_COLUMNS = ("student", "exercise", "score", "max_score", "status")
 FOLDER_LENGTH = 80  # longest folder name made from a student id

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .core import Verdict
+from .verdict import Verdict
 
 STATUSES = {
     "passed": "every case passed",
@@ -16,14 +16,13 @@ STATUSES = {
     "error": "the answer raised an exception",
     "timeout": "the answer ran out of time",
     "memory": "the answer ran out of memory",
+    "too many events": "a case emitted far more events than the reference's (a loop that never ends?)",
     "no answer": "no cell starts with the exercise's answer marker",
-    "duplicate answer": "more than one cell starts with the exercise's answer marker",
     "not defined": "the answer cell does not define the function the exercise asks for",
     "syntax error": "the answer cell is not valid Python",
-    "not allowed": "the answer uses the reference implementation, patches scanviz, "
-    "exits the process or touches files outside its folder",
+    "not allowed": "the process running the answer wrote something other than a reply on its "
+    "channel to the grader",
     "crashed": "the process running the answer died",
-    "grader error": "the grader could not compare what the answer produced (a bug: please report it)",
     "malformed notebook": "the notebook file is not a readable notebook",
 }
 """Every status an exercise grade can have, with what it means."""
@@ -38,8 +37,14 @@ class ExerciseGrade:
     score: float
     max_score: float
     status: str  # a key of STATUSES
-    message: str = ""  # one line saying why, for every status but "passed"
+    message: str = ""  # one line saying why, for every status but "passed" (and notes)
     verdicts: list[Verdict] = field(default_factory=list)  # public cases first, then hidden
+    output: str = ""  # what the answer printed during its public cases
+
+    @property
+    def attempted(self) -> bool:
+        """Whether the student answered (a class's pass rates count only those who did)."""
+        return self.status not in ("no answer", "malformed notebook")
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:

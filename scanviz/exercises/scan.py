@@ -30,7 +30,7 @@ def _row_of_call(index: int, trace: list) -> str:
     return f"row {rows[index]}" if index < len(rows) else f"call {index + 1}"
 
 
-def _span_case(rng: random.Random) -> Case:
+def _span_case(rng: random.Random, feature: str | None = None) -> Case:
     width, height = rng.randint(6, 12), rng.randint(6, 12)
     feature, vertices = polygon(rng, width, height)
     rule = rng.choice(("nonzero", "evenodd"))
@@ -172,7 +172,6 @@ register(
             "from scanviz.widgets import scan_conversion_stepper\n"
             "scan_conversion_stepper(CASE['polygon'], CASE['width'], CASE['height'], rule=CASE['rule'])"
         ),
-        banned=("scanviz.raster.scanline", "span_rule"),
     )
 )
 
@@ -336,7 +335,6 @@ register(
         output=_entry_output,
         raster=lambda result: result.mask,
         stepper=STEPPER,
-        banned=("scanviz.raster.scanline", "edge_table_entry"),
     )
 )
 
@@ -462,7 +460,6 @@ register(
         place=_scanned_row_of_call,
         raster=lambda result: result.mask,
         stepper=STEPPER,
-        banned=("scanviz.raster.scanline", "aet_update"),
     )
 )
 
@@ -639,6 +636,5 @@ register(
         kinds=("edges_activated", "edges_retired", "aet_sorted", "span"),
         raster=lambda mask: mask,
         stepper=STEPPER,
-        banned=("scanviz.raster.scanline", "scan_loop"),
     )
 )

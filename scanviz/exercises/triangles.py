@@ -105,7 +105,7 @@ def _triangles(rng: random.Random, feature: str) -> tuple[list, str]:
     )
 
 
-def _triangles_case(rng: random.Random) -> Case:
+def _triangles_case(rng: random.Random, feature: str | None = None) -> Case:
     feature = rng.choice(FEATURES)
     while True:
         triangles, sample = _triangles(rng, feature)
@@ -248,7 +248,6 @@ register(
         result=lambda returned: returned[0],
         raster=lambda returned: returned[0] > 0,
         stepper=STEPPER,
-        banned=("scanviz.raster.edgefn", "owns_boundary"),
     )
 )
 
@@ -336,6 +335,5 @@ register(
         result=lambda returned: returned[1],
         raster=lambda returned: returned[0] > 0,
         stepper=STEPPER,
-        banned=("scanviz.raster.edgefn", "edge_function"),
     )
 )

@@ -93,7 +93,7 @@ def _face_of_call(index: int, trace: list) -> str:
     return f"face {faces[index]}" if index < len(faces) else f"call {index + 1}"
 
 
-def _cull_case(rng: random.Random) -> Case:
+def _cull_case(rng: random.Random, feature: str | None = None) -> Case:
     category = rng.choice(
         ("box, perspective", "box, orthographic", "eye in a face's plane", "degenerate face")
     )
@@ -238,7 +238,6 @@ register(
             "from scanviz.widgets import ViewingPipelineView\n"
             "ViewingPipelineView(case_scene(CASE), 64, 64).widget"
         ),
-        banned=("scanviz.transform.cull", "back_face_test", "cull_faces", "back_facing"),
     )
 )
 
@@ -276,7 +275,7 @@ def _plane_of_call(index: int, trace: list) -> str:
     return f"{CLIP_PLANES[plane]} plane {PLANE_EQUATIONS[plane]}"
 
 
-def _clip_case(rng: random.Random) -> Case:
+def _clip_case(rng: random.Random, feature: str | None = None) -> Case:
     category = rng.choice(("triangle", "polygon", "vertex on a plane", "mostly outside"))
     count = 3 if category == "triangle" else rng.randint(4, 6)
     spread = 2.5 if category == "mostly outside" else 1.6
@@ -436,7 +435,6 @@ register(
             "print('their attributes:', attributes.tolist())\n"
             "plot_clip(CASE['polygon'], recorder.trace()[0])"
         ),
-        banned=("scanviz.transform.clip", "clip_against_plane", "clip_polygon"),
     )
 )
 
@@ -458,7 +456,7 @@ def _view_with(fn, inputs, tracer):
         )
 
 
-def _view_case(rng: random.Random) -> Case:
+def _view_case(rng: random.Random, feature: str | None = None) -> Case:
     category = rng.choice(("perspective", "orthographic", "tilted up vector", "long up vector"))
     eye = _eye(rng, 8, 12)  # the box is within 5.2 of the origin: every point has w > 1
     up = [0.0, 1.0, 0.0]
@@ -615,6 +613,5 @@ register(
             "from scanviz.widgets import ViewingPipelineView\n"
             "ViewingPipelineView(case_scene(CASE), CASE['width'], CASE['height']).widget"
         ),
-        banned=("scanviz.transform.viewing", "viewing_matrix", "eye_from_world"),
     )
 )

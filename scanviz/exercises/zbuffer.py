@@ -54,7 +54,7 @@ def _depths(rng: random.Random, vertices: list, flat: bool) -> list:
     return [[x, y, min(max(z0 + dx * x + dy * y, 0.0), 15.0)] for x, y in vertices]
 
 
-def _zbuffer_case(rng: random.Random) -> Case:
+def _zbuffer_case(rng: random.Random, feature: str | None = None) -> Case:
     width, height = rng.randint(6, 12), rng.randint(6, 12)
     category = rng.choice(("flat, ties", "sloped, piercing", "mixed", "nearest first"))
     shapes = [polygon(rng, width, height) for _ in range(rng.randint(2, 4))]
@@ -207,6 +207,5 @@ register(
             "from scanviz.widgets import zbuffer_stepper\n"
             "zbuffer_stepper(case_scene(CASE), CASE['width'], CASE['height'], shading='flat')"
         ),
-        banned=("scanviz.visibility.zbuffer", "depth_test", "zbuffer_reference"),
     )
 )

@@ -9,7 +9,8 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..exercises.compare import MISSING, aligned, first_difference, show, where
-from ..exercises.core import Outcome, Verdict
+from ..exercises.core import Outcome
+from ..exercises.verdict import Verdict
 
 WINDOW = 4  # events shown before and after the current one
 EVENT_TEXT = 400  # characters of one event's fields shown

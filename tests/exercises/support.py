@@ -2,11 +2,11 @@
 
 from scanviz.exercises.core import (
     compile_answer,
-    judge,
     reference_outcome,
     run_case,
     variant_outcomes,
 )
+from scanviz.exercises.verdict import judge
 
 
 def grade(exercise, answer, cases, *, variants=True):

@@ -10,7 +10,7 @@ from scanviz.exercises.compare import (
     show,
     trace_difference,
 )
-from scanviz.exercises.plain import Record
+from scanviz.exercises.jail.wire import Fields
 from scanviz.trace.events import AetEntry, AetSorted, Span
 
 
@@ -29,8 +29,8 @@ def test_exact_numbers_compare_exactly_and_floats_within_the_tolerance():
 
 
 def test_paths_name_the_field_and_index():
-    yours = [Record("E", {"x": Fraction(17, 5), "w": 1})]
-    reference = [Record("E", {"x": Fraction(37, 10), "w": 1})]
+    yours = [Fields("E", {"x": Fraction(17, 5), "w": 1})]
+    reference = [Fields("E", {"x": Fraction(37, 10), "w": 1})]
     difference = first_difference(yours, reference)
     assert difference.path == "[0].x"
     assert (

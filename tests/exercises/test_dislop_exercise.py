@@ -96,7 +96,7 @@ def test_the_step_is_called_once_a_middle_column_with_its_slope_and_dxy():
         assert seen == [(e.slope, e.dxy) for e in middle], case.label
         assert all(0 <= m <= 1 and -0.5 < dxy <= 0.5 for m, dxy in seen), case.label
         assert reference_outcome(COLUMN, case).calls == [
-            list(middle_column(m, dxy)) for m, dxy in seen
+            tuple(middle_column(m, dxy)) for m, dxy in seen
         ], case.label
 
 

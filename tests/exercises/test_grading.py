@@ -6,12 +6,14 @@ import nbformat
 import pytest
 from nbformat import v4
 
-from scanviz.exercises import grading
+from scanviz.exercises import judging
 from scanviz.exercises.catalog import get
-from scanviz.exercises.core import compile_answer, hidden_cases, judge, reference_outcome, run_case
-from scanviz.exercises.grading import check_notebook, find_submissions, grade_submissions
+from scanviz.exercises.core import compile_answer, hidden_cases, reference_outcome, run_case
+from scanviz.exercises.grading import check_notebook, find_submissions, grade_submissions, in_shard
+from scanviz.exercises.jail import JailUnavailable, launch
 from scanviz.exercises.key import CourseKey, ExerciseKey
 from scanviz.exercises.notebook import ANSWER_MARKER, NotebookError
+from scanviz.exercises.verdict import judge
 
 SECRET = "5ec2e7" * 8
 SPAN = get("span_rule")
@@ -42,12 +44,11 @@ HOSTILE = {  # student id -> (answer body, status)
     "loops": ("def span_rule(crossings, rule):\n    while True:\n        pass\n", "timeout"),
     "allocates": ("def span_rule(crossings, rule):\n    return bytearray(10 * 2**30)\n", "memory"),
     "raises": ("def span_rule(crossings, rule):\n    raise KeyError(rule)\n", "error"),
-    "exits": ("import sys\n" + _wrapped("sys.exit(0)"), "not allowed"),
+    "exits": ("import os\n" + _wrapped("os._exit(0)"), "crashed"),
     "patches": (
         "import scanviz.raster.scanline\nscanviz.raster.scanline.span_rule = lambda c, r: []\n",
-        "not allowed",
+        "error",
     ),
-    "snoops": (_wrapped("open('/etc/passwd').read()"), "not allowed"),
     "typo": ("def span_rule(crossings, rule)\n    return []\n", "syntax error"),
 }
 
@@ -86,7 +87,7 @@ def test_a_synthetic_class_grades_correctly(tmp_path):
         _write(folder / f"{student}.ipynb", _answer(body))
     (folder / "broken.ipynb").write_text('{"cells": [')
     _write(folder / "empty.ipynb", v4.new_code_cell("print('no answer here')"))
-    _write(folder / "twice.ipynb", _answer(SPAN.solution), _answer(SPAN.solution))
+    _write(folder / "twice.ipynb", _answer(SPAN.variants[0].source), _answer(SPAN.solution))
     key = _key()
     grades = {g.student: g.grades for g in grade_submissions(folder, key, jobs=2, progress=False)}
     assert len(grades) == 7 + len(SPAN.variants) + len(HOSTILE)
@@ -102,6 +103,7 @@ def test_a_synthetic_class_grades_correctly(tmp_path):
             2,
         )
     assert got["stub"] == (0.0, "error")
+    assert "no known mistake" not in grades["stub"][0].message
     assert "NotImplementedError" in grades["stub"][0].message
     for variant in SPAN.variants:
         grade = grades[f"variant-{variant.name}"][0]
@@ -112,8 +114,9 @@ def test_a_synthetic_class_grades_correctly(tmp_path):
     assert got["broken"] == (0.0, "malformed notebook")
     assert "is not valid JSON" in grades["broken"][0].message
     assert got["empty"] == (0.0, "no answer")
-    assert got["twice"] == (0.0, "duplicate answer")
-    assert "(cells 2 and 3); keep one" in grades["twice"][0].message
+    assert got["twice"] == (4.0, "passed")  # the last of the two marked cells
+    assert "(cells 2 and 3): the last one, cell 3, was graded" in grades["twice"][0].message
+    assert "ModuleNotFoundError: No module named 'scanviz.raster'" in grades["patches"][0].message
 
 
 def test_same_key_and_submissions_give_the_same_grades_and_references_are_computed_once(
@@ -121,7 +124,7 @@ def test_same_key_and_submissions_give_the_same_grades_and_references_are_comput
 ):
     calls = []
     monkeypatch.setattr(
-        grading, "reference_outcome", lambda e, c: calls.append(c) or reference_outcome(e, c)
+        judging, "reference_outcome", lambda e, c: calls.append(c) or reference_outcome(e, c)
     )
     folder = tmp_path / "class"
     _write(folder / "ann.ipynb", _answer(SPAN.solution))
@@ -194,8 +197,10 @@ def test_a_student_folder_of_notebooks_is_graded_as_one_submission(tmp_path):
     (root / "erin").mkdir()
     grades = {s.student: s.grades[0] for s in grade_submissions(root, _key(), progress=False)}
     assert grades["dave"].status == "passed" and grades["dave"].score == 4
-    assert grades["gina"].status == "duplicate answer"
-    assert "answered in two notebooks (a.ipynb and b.ipynb); keep one" in grades["gina"].message
+    assert grades["gina"].status == "failed"  # b.ipynb, the last: the variant
+    assert "answered in 2 notebooks (a.ipynb, b.ipynb): the one in b.ipynb was graded" in (
+        grades["gina"].message
+    )
     assert grades["erin"].status == "malformed notebook"
     assert "holds no notebook" in grades["erin"].message
 
@@ -223,3 +228,37 @@ def test_check_notebook_runs_the_public_cases_only(tmp_path):
     (tmp_path / "bad.ipynb").write_text("{")
     with pytest.raises(NotebookError, match="bad.ipynb"):
         check_notebook(tmp_path / "bad.ipynb")
+
+
+def test_shards_split_a_class_and_together_grade_it_whole(tmp_path):
+    folder = tmp_path / "class"
+    for name in ("ann", "ben", "cat", "dan", "eve"):
+        _write(folder / f"{name}.ipynb", _answer(SPAN.solution))
+    whole = [s.student for s in grade_submissions(folder, _key(), progress=False)]
+    parts = [
+        [s.student for s in grade_submissions(folder, _key(), progress=False, shard=(k, 3))]
+        for k in (1, 2, 3)
+    ]
+    assert sorted(sum(parts, [])) == whole
+    assert all(in_shard(student, (k + 1, 3)) for k, part in enumerate(parts) for student in part)
+    with pytest.raises(ValueError, match=r"'shard' must be \(k, n\) with 1 <= k <= n"):
+        grade_submissions(folder, _key(), shard=(4, 3))
+
+
+def test_grading_refuses_without_a_jail_and_says_how_to_go_on(tmp_path, monkeypatch):
+    monkeypatch.setattr(launch, "unavailable", lambda: "bubblewrap is not installed")
+    with pytest.raises(JailUnavailable, match="bubblewrap is not installed. Pass --no-jail"):
+        grade_submissions(tmp_path, _key(), progress=False)
+    _write(tmp_path / "ann.ipynb", _answer(SPAN.solution))
+    grades = grade_submissions(tmp_path, _key(), progress=False, jailed=False)
+    assert grades[0].grades[0].status == "passed"
+
+
+def test_a_key_the_jail_could_see_is_refused(tmp_path, monkeypatch):
+    key = tmp_path / "key.toml"
+    from scanviz.exercises.key import write_key
+
+    write_key(_key(), key)
+    monkeypatch.setattr(launch, "visible", lambda path: str(path) == str(key))
+    with pytest.raises(ValueError, match="lies inside what the jail shows"):
+        grade_submissions(tmp_path, key, progress=False)

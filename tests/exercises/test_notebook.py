@@ -9,9 +9,10 @@ from nbformat import v4
 from scanviz import limits
 from scanviz.exercises.notebook import (
     ANSWER_MARKER,
-    SETUP_MARKER,
+    Answers,
     NotebookError,
     find_answers,
+    merge_answers,
     read_notebook,
 )
 
@@ -26,7 +27,7 @@ def test_an_answer_is_the_whole_source_of_the_cell_that_starts_with_the_marker()
     source = f"{ANSWER_MARKER}span_rule\n{BODY}"
     found = find_answers(_notebook(v4.new_markdown_cell("intro"), v4.new_code_cell(source)))
     assert found.answers == {"span_rule": source}
-    assert found.setup == [] and found.problems == {}
+    assert found.notes == {} and found.problems == {}
 
 
 def test_trailing_whitespace_after_the_marker_is_tolerated_and_list_sources_are_joined():
@@ -55,22 +56,26 @@ def test_a_marker_in_a_markdown_cell_or_not_on_the_first_line_is_not_an_answer()
     assert found.answers == {} and found.problems == {}
 
 
-def test_setup_cells_are_kept_in_order():
-    cells = [v4.new_code_cell(f"{SETUP_MARKER}\nimport math"), v4.new_code_cell("y = 2")]
-    cells.append(v4.new_code_cell(f"{SETUP_MARKER} \nfrom fractions import Fraction"))
-    found = find_answers(_notebook(*cells))
-    assert found.setup == [cells[0]["source"], cells[2]["source"]]
-
-
-def test_a_duplicated_marker_is_a_problem_naming_both_cells():
-    cells = [v4.new_code_cell(f"{ANSWER_MARKER}span_rule\n{BODY}") for _ in range(2)]
+def test_a_duplicated_marker_grades_the_last_cell_and_says_so():
+    # Students copy cells (nbgrader #1083, #981): the last attempt is graded, not none.
+    cells = [v4.new_code_cell(f"{ANSWER_MARKER}span_rule\n{BODY}# attempt {k}\n") for k in range(2)]
     found = find_answers(_notebook(v4.new_markdown_cell("a"), v4.new_code_cell("x = 1"), *cells))
-    assert "span_rule" not in found.answers
-    assert found.duplicated == {"span_rule"}
-    assert found.problems["span_rule"] == (
-        "exercise 'span_rule': 2 cells start with '# scanviz: answer span_rule' (cells 3 and 4); "
-        "keep one"
+    assert found.answers["span_rule"] == cells[1]["source"]
+    assert found.notes["span_rule"] == (
+        "2 cells start with '# scanviz: answer span_rule' (cells 3 and 4): "
+        "the last one, cell 4, was graded"
     )
+
+
+def test_merged_notebooks_grade_the_released_notebooks_answer_and_say_so():
+    scratch = Answers({"span_rule": "scratch"})
+    released = Answers({"span_rule": "released"})
+    merged = merge_answers([("05_span_rule.ipynb", released), ("zz scratch.ipynb", scratch)])
+    assert merged.answers == {"span_rule": "released"}
+    assert merged.notes["span_rule"].endswith("the one in 05_span_rule.ipynb was graded")
+    merged = merge_answers([("a.ipynb", released), ("b.ipynb", scratch)])
+    assert merged.answers == {"span_rule": "scratch"}
+    assert "answered in 2 notebooks (a.ipynb, b.ipynb)" in merged.notes["span_rule"]
 
 
 def test_an_unknown_exercise_id_gets_a_suggestion():

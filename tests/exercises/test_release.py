@@ -114,7 +114,7 @@ def test_released_notebooks_hold_no_hidden_input(tmp_path):
     import json
 
     from scanviz.exercises.core import hidden_cases
-    from scanviz.exercises.plain import to_plain
+    from scanviz.exercises.jail.wire import encode as to_plain
 
     text = "".join(p.read_text(encoding="utf-8") for p in write_notebooks(tmp_path))
     for exercise in exercises():

@@ -20,7 +20,6 @@ from scanviz.exercises.catalog import get
 from scanviz.exercises.core import (
     compile_answer,
     hidden_cases,
-    judge,
     reference_outcome,
     run_case,
     score,
@@ -28,6 +27,7 @@ from scanviz.exercises.core import (
 )
 from scanviz.exercises.key import new_key
 from scanviz.exercises.results import ExerciseGrade, StudentGrade
+from scanviz.exercises.verdict import judge
 
 LEAKER = """\
 def span_rule(crossings, rule):

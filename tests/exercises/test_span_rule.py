@@ -1,11 +1,6 @@
 """The span_rule exercise, and the core's free and forced runs, verdicts and hidden cases on it."""
 
-import pytest
-
 from scanviz.exercises import get
-from scanviz.exercises.core import (
-    Outcome,
-)
 
 from .support import grade
 
@@ -29,12 +24,3 @@ def test_forced_run_lists_every_wrong_call_not_only_the_first():
     wrong = "def span_rule(crossings, rule):\n    return []\n"
     verdict = grade(EXERCISE, wrong, EXERCISE.public[:1])[0]
     assert verdict.wrong_calls == ("row 0", "row 1", "row 2", "row 3", "row 4")
-
-
-def test_an_outcome_from_a_worker_is_checked():
-    with pytest.raises(ValueError):
-        Outcome.from_plain({"trace": 3})
-    with pytest.raises(ValueError):
-        Outcome.from_plain([1, 2])
-    with pytest.raises(ValueError, match="unknown event kind"):
-        Outcome.from_plain({"trace": [{"$event": {"kind": "spam"}}]})

@@ -92,7 +92,7 @@ def test_the_step_is_called_once_a_table_column_with_the_slope_and_dxy():
         looked_up = _looked_up(case)
         assert [dxy for _, dxy in seen] == [e.dxy for e in looked_up], case.label
         assert all(0 <= m <= 1 and -0.5 < dxy <= 0.5 for m, dxy in seen), case.label
-        assert reference_outcome(INDEX, case).calls == [[e.i, e.j] for e in looked_up]
+        assert reference_outcome(INDEX, case).calls == [(e.i, e.j) for e in looked_up]
 
 
 def test_the_public_cases_hold_the_dissertations_worked_indices():
