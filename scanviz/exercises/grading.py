@@ -103,7 +103,7 @@ class Plan:
     secret: str
     per_student: bool
     limits: Limits
-    jailed: bool
+    jail: str  # one of scanviz.exercises.jail.launch.JAILS
 
 
 class Grader:
@@ -133,7 +133,7 @@ class Grader:
                 self._zero(student, e, "malformed notebook", problem) for e in self.exercises
             ]
         else:
-            session = Session(self.plan.limits, jailed=self.plan.jailed)
+            session = Session(self.plan.limits, jail=self.plan.jail)
             try:
                 grade.grades = [
                     self._exercise(session, student, e, answers) for e in self.exercises
@@ -224,26 +224,38 @@ def _chosen(key: CourseKey, exercises: Iterable[str] | None) -> list[Exercise]:
     return [get(e) for e in sorted(set(ids), key=order.__getitem__)]
 
 
-def jail_or_refuse(jailed: bool, *private: str | os.PathLike) -> None:
-    """Refuse to grade if the jail cannot start, or if it would show one of the `private` paths.
-
-    Raises `JailUnavailable` (saying why, and that ``--no-jail`` exists for
-    submissions one trusts) or ValueError.
-    """
-    if not jailed:
-        return
-    reason = launch.unavailable()
-    if reason is not None:
+def jail_or_refuse(jail: str, *private: str | os.PathLike) -> str:
+    """The jail grading will use (``"auto"``: bubblewrap if it starts, else the user jail), or
+    a refusal: `JailUnavailable` if it cannot start (saying why and that ``--no-jail``
+    exists for submissions one trusts), ValueError if a jailed answer could read one of the
+    `private` paths (the key, the submissions) or the reference."""
+    if jail not in (*launch.JAILS, "auto"):
+        raise ValueError(f"'jail' must be one of {(*launch.JAILS, 'auto')}; got {jail!r}")
+    if jail == "none":
+        return jail
+    tried = ("bwrap", "user") if jail == "auto" else (jail,)
+    reasons = {name: launch.unavailable(name) for name in tried}
+    chosen = next((name for name in tried if reasons[name] is None), None)
+    if chosen is None:
+        why = "; ".join(f"{name}: {reason}" for name, reason in reasons.items())
         raise JailUnavailable(
-            f"grading runs each answer in a jail, which cannot start here: {reason}. "
-            "Pass --no-jail (jailed=False) only for submissions you trust"
+            f"grading runs each answer in a jail, which cannot start here ({why}). "
+            "Pass --no-jail only for submissions you trust"
         )
     for path in private:
-        if launch.visible(path):
+        if chosen == "bwrap" and launch.visible(path):
             raise ValueError(
                 f"{os.fspath(path)!r} lies inside what the jail shows of this machine "
                 "(the system's and Python's folders): move it elsewhere"
             )
+    if chosen == "user":
+        for path in [*private, launch.reference_file()]:
+            if launch.readable_by_nobody(path):
+                raise ValueError(
+                    f"the 'user' jail runs answers as the user nobody, who can read "
+                    f"{os.fspath(path)!r}: close it to others (chmod o-rwx on it or a folder above)"
+                )
+    return chosen
 
 
 _GRADER: Grader | None = None  # the judging process's grader
@@ -266,15 +278,16 @@ def grade_submissions(
     exercises: Iterable[str] | None = None,
     progress: bool = True,
     shard: tuple[int, int] | None = None,
-    jailed: bool = True,
+    jail: str = "bwrap",
 ) -> list[StudentGrade]:
     """Grade every submission in `folder` (see `find_submissions`) with the course `key`.
 
     `jobs` submissions are graded at once, each in a judging process of its
     own; `exercises` restricts the grading to some of the key's exercises;
     `shard` = (k, n) grades only part k of n of the students (`in_shard`);
-    `progress` shows a bar over the students. Unless `jailed` is False, the
-    answers run in the jail, and grading refuses to start without one
+    `progress` shows a bar over the students. The answers run in `jail`
+    (``"bwrap"``, ``"user"``, ``"auto"`` for the first of the two that starts,
+    or ``"none"``), and grading refuses to start if it cannot
     (`jail_or_refuse`). The result is in student order.
     """
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
@@ -285,7 +298,7 @@ def grade_submissions(
         raise ValueError(f"'shard' must be (k, n) with 1 <= k <= n; got {shard!r}")
     private = [folder] if isinstance(key, CourseKey) else [folder, key]
     key = key if isinstance(key, CourseKey) else load_key(key)
-    jail_or_refuse(jailed, *private)
+    jail = jail_or_refuse(jail, *private)
     chosen = _chosen(key, exercises)
     submissions = find_submissions(folder)
     if shard is not None:
@@ -297,7 +310,7 @@ def grade_submissions(
         key.secret,
         key.per_student,
         Limits(key.cpu_seconds, key.memory_mb, key.case_seconds),
-        jailed,
+        jail,
     )
     with progress_bar(len(submissions), "students", enabled=progress) as bar:
         if jobs == 1 or len(submissions) <= 1:
@@ -322,13 +335,13 @@ def check_notebook(
     path: str | os.PathLike,
     exercises: Iterable[str] | None = None,
     limits: Limits | None = None,
-    jailed: bool | None = None,
+    jail: str | None = None,
 ) -> StudentGrade:
     """The public cases of `path`'s answers, as grading runs them (``python -m scanviz check``).
 
     `exercises` (ids) are checked, by default those the notebook has answer
-    cells (or marker problems) for. The answers run in the jail where it can
-    start (`jailed` None), else in a plain runner. A notebook that cannot be
+    cells (or marker problems) for. The answers run in bubblewrap's jail where
+    it starts (`jail` None), else in a plain runner (a student's own machine). A notebook that cannot be
     read raises `NotebookError`; the student id is the file's stem.
     """
     path = Path(path)
@@ -347,6 +360,6 @@ def check_notebook(
         "",
         False,
         limits or Limits(),
-        launch.unavailable() is None if jailed is None else jailed,
+        jail or ("bwrap" if launch.unavailable("bwrap") is None else "none"),
     )
     return Grader(plan).grade(path.stem, path)

@@ -14,13 +14,20 @@
   score, the most common first divergence and the most common known-wrong
   variant, with a plot in the HTML.
 
-What a student's code produced (messages, diagnostics) and the student ids
-are untrusted text: HTML escapes it, Markdown fences or backslash-escapes
-it. A hidden case's inputs are shown only when the key's ``reveal`` is
-``"always"``. Otherwise a failed hidden case is reported by its category,
-where it first differs, the counts and the likely cause -- no values, no
-raster, and no error message, which a student's code could fill with the
-inputs it was given (`case_report`, `grade_message`).
+What a student's code produced (messages, diagnostics, what it printed) and
+the student ids are untrusted text: HTML escapes it, Markdown fences or
+backslash-escapes it, and a CSV cell that a spreadsheet would read as a
+formula (``=``, ``+``, ``-``, ``@``) is quoted with a leading ``'``. A hidden
+case's inputs are shown only when the key's ``reveal`` is ``"always"``.
+Otherwise a failed hidden case is reported by its category, where it first
+differs, the counts and the likely cause -- no values, no raster, and no
+error message, which a student's code could fill with the inputs it was
+given (`case_report`); grade messages quote public cases only, and the
+printed output shown is that of the public cases.
+
+``grades.json`` holds what the class summary and ``grades.csv`` need;
+`merge_reports` joins the folders of a class graded in shards
+(``grade --shard K/N``) into one, as if it had been graded at once.
 
 Student ids come from file names, so a student's folder is a sanitized
 copy of the id (`folder_names`): only letters, digits, ``.``, ``_`` and
@@ -32,10 +39,12 @@ from __future__ import annotations
 
 import base64
 import csv
+import dataclasses
 import html
 import io
 import json
 import re
+import shutil
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -43,12 +52,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..limits import read_bounded
 from .catalog import exercises
 from .key import CourseKey
 from .results import STATUSES, ExerciseGrade, StudentGrade
-from .verdict import Verdict, builtin_error_name
+from .verdict import Verdict
 
 CSV_COLUMNS = ("student", "exercise", "score", "max_score", "status")
+PRINTED = "What your code printed during the public cases:"
 FOLDER_LENGTH = 80  # longest folder name made from a student id
 _UNSAFE = re.compile(r"[^A-Za-z0-9._-]")
 
@@ -108,24 +119,6 @@ def case_report(verdict: Verdict, reveal: bool) -> CaseReport:
     return CaseReport(verdict, verdict.describe(reveal=reveal), image)
 
 
-def grade_message(grade: ExerciseGrade, reveal: bool) -> str:
-    """The grade's message, with the text of any hidden case's error cut unless `reveal`.
-
-    A worker's "your code raised ..." message quotes the first error, which
-    may come from a hidden case and carry its inputs.
-    """
-    message = grade.message
-    if reveal:
-        return message
-    for verdict in grade.verdicts:
-        if verdict.hidden and verdict.error:
-            kind = builtin_error_name(verdict.error)
-            message = message.replace(
-                verdict.error, f"{kind} (in a hidden case: message not shown)"
-            )
-    return message
-
-
 def png_data_uri(image: np.ndarray) -> str:
     """A ``data:image/png;base64,...`` URI of an (H, W, 3) diff image."""
     from ..widgets.exercise import raster_png
@@ -162,10 +155,12 @@ def _fenced(text: str) -> str:
 def _exercise_markdown(grade: ExerciseGrade, title: str, reveal: bool) -> str:
     parts = [f"## {title}", _status_line(grade)]
     if grade.message:
-        parts.append(_fenced(grade_message(grade, reveal)))
+        parts.append(_fenced(grade.message))
     if grade.verdicts:
         parts.append(_counts(grade))
         parts.extend(_fenced(case_report(v, reveal).text) for v in grade.verdicts)
+    if grade.output:
+        parts += [PRINTED, _fenced(grade.output)]
     return "\n\n".join(parts)
 
 
@@ -176,7 +171,7 @@ def _exercise_html(grade: ExerciseGrade, title: str, reveal: bool) -> str:
         f"<p class='{mark}'><b>{html.escape(_status_line(grade))}</b></p>",
     ]
     if grade.message:
-        parts.append(f"<pre>{html.escape(grade_message(grade, reveal))}</pre>")
+        parts.append(f"<pre>{html.escape(grade.message)}</pre>")
     if grade.verdicts:
         parts.append(f"<p>{html.escape(_counts(grade))}</p>")
     for verdict in grade.verdicts:
@@ -187,6 +182,8 @@ def _exercise_html(grade: ExerciseGrade, title: str, reveal: bool) -> str:
                 f"<p><img class='raster' alt='raster diff: grey matched, red extra, blue missing'"
                 f" src='{png_data_uri(report.image)}'></p>"
             )
+    if grade.output:
+        parts.append(f"<p>{PRINTED}</p><pre>{html.escape(grade.output)}</pre>")
     parts.append("</section>")
     return "\n".join(parts)
 
@@ -279,7 +276,7 @@ def gradescope_tests(grade: ExerciseGrade, reveal: bool) -> list[dict]:
     grade with no cases run (no answer, a syntax error, ...) is one test.
     """
     if not grade.verdicts:
-        output = _fenced(f"{STATUSES[grade.status]}\n{grade_message(grade, reveal)}".rstrip())
+        output = _fenced(f"{STATUSES[grade.status]}\n{grade.message}".rstrip())
         name = f"{grade.exercise}: {grade.status}"
         return [_test(name, grade.score, grade.max_score, grade.status == "passed", output, True)]
     ran = grade.status in ("passed", "failed", "error")  # any other status scores 0 regardless
@@ -301,7 +298,9 @@ def gradescope_tests(grade: ExerciseGrade, reveal: bool) -> list[dict]:
             ok = ran and won == len(verdicts)
             tests.append(_test(name, score, max_score, ok, output, visible))
     if grade.message:
-        tests[0]["output"] = _fenced(grade_message(grade, reveal)) + "\n\n" + tests[0]["output"]
+        tests[0]["output"] = _fenced(grade.message) + "\n\n" + tests[0]["output"]
+    if grade.output:
+        tests[0]["output"] += f"\n\n{PRINTED}\n\n{_fenced(grade.output)}"
     return tests
 
 
@@ -324,18 +323,59 @@ def gradescope_results(student: StudentGrade, reveal: bool, execution_time: floa
 
 
 @dataclass(frozen=True)
+class GradeRow:
+    """What the class summary and grades.csv read of one exercise grade (also grades.json's rows).
+
+    ``divergence`` and ``variant``: the most common first divergence
+    (`Verdict.signature`) and known-wrong variant among its failed cases.
+    """
+
+    student: str
+    exercise: str
+    score: float
+    max_score: float
+    status: str
+    attempted: bool
+    divergence: str | None
+    variant: str | None
+
+
+def grade_rows(grades: list[StudentGrade]) -> list[GradeRow]:
+    """One row per student and exercise, in order."""
+    rows = []
+    for student in grades:
+        for g in student.grades:
+            failed = [v for v in g.verdicts if not v.passed]
+            rows.append(
+                GradeRow(
+                    student.student,
+                    g.exercise,
+                    g.score,
+                    g.max_score,
+                    g.status,
+                    g.attempted,
+                    _mode([v.signature for v in failed]),
+                    _mode([v.variant.name for v in failed if v.variant]),
+                )
+            )
+    return rows
+
+
+@dataclass(frozen=True)
 class ExerciseSummary:
     """One exercise across the class.
 
-    ``divergence`` and ``variant`` are (what, students): each student counts
-    once, with the most common first divergence (`Verdict.signature`) or
-    known-wrong variant among their failed cases.
+    Rates and means are over the students who `attempted` it (an answer cell
+    was found); ``students`` counts everyone. ``divergence`` and ``variant``
+    are (what, students): each student counts once, with their most common
+    first divergence or known-wrong variant.
     """
 
     exercise: str
     students: int
+    attempted: int
     passed: int  # students with every case passed
-    mean_score: float
+    mean_score: float  # over those who attempted it
     max_score: float
     statuses: dict[str, int]
     divergence: tuple[str, int] | None
@@ -343,11 +383,11 @@ class ExerciseSummary:
 
     @property
     def pass_rate(self) -> float:
-        return self.passed / self.students if self.students else 0.0
+        return self.passed / self.attempted if self.attempted else 0.0
 
 
-def _most_common(per_student: list[str | None]) -> tuple[str, int] | None:
-    counts = Counter(item for item in per_student if item)
+def _most_common(items: list[str | None]) -> tuple[str, int] | None:
+    counts = Counter(item for item in items if item)
     return counts.most_common(1)[0] if counts else None
 
 
@@ -355,40 +395,49 @@ def _mode(items: list[str]) -> str | None:
     return Counter(items).most_common(1)[0][0] if items else None
 
 
-def class_summary(grades: list[StudentGrade]) -> list[ExerciseSummary]:
+def class_summary(rows: list[GradeRow]) -> list[ExerciseSummary]:
     """Every exercise's summary across the class, in the order the exercises first appear."""
-    by_exercise: dict[str, list[ExerciseGrade]] = {}
-    for student in grades:
-        for grade in student.grades:
-            by_exercise.setdefault(grade.exercise, []).append(grade)
+    by_exercise: dict[str, list[GradeRow]] = {}
+    for row in rows:
+        by_exercise.setdefault(row.exercise, []).append(row)
     summaries = []
     for exercise, items in by_exercise.items():
-        failed = [[v for v in g.verdicts if not v.passed] for g in items]
+        tried = [r for r in items if r.attempted]
         summaries.append(
             ExerciseSummary(
                 exercise,
                 len(items),
-                sum(g.status == "passed" for g in items),
-                sum(g.score for g in items) / len(items),
-                max(g.max_score for g in items),
-                dict(Counter(g.status for g in items).most_common()),
-                _most_common([_mode([v.signature for v in f]) for f in failed]),
-                _most_common([_mode([v.variant.name for v in f if v.variant]) for f in failed]),
+                len(tried),
+                sum(r.status == "passed" for r in tried),
+                sum(r.score for r in tried) / len(tried) if tried else 0.0,
+                max(r.max_score for r in items),
+                dict(Counter(r.status for r in items).most_common()),
+                _most_common([r.divergence for r in tried]),
+                _most_common([r.variant for r in tried]),
             )
         )
     return summaries
 
 
-def summary_line(grades: list[StudentGrade]) -> str:
+def _totals(rows: list[GradeRow]) -> dict[str, tuple[float, float]]:
+    totals: dict[str, tuple[float, float]] = {}
+    for row in rows:
+        score, best = totals.get(row.student, (0.0, 0.0))
+        totals[row.student] = (score + row.score, best + row.max_score)
+    return totals
+
+
+def summary_line(rows: list[GradeRow]) -> str:
     """One line about the class: students, mean total, full marks."""
-    if not grades:
+    totals = _totals(rows)
+    if not totals:
         return "no submissions graded"
-    total = sum(s.score for s in grades) / len(grades)
-    best = max(s.max_score for s in grades)
-    full = sum(s.score >= s.max_score > 0 for s in grades)
-    share = f" ({total / best:.0%})" if best else ""
+    mean = sum(score for score, _ in totals.values()) / len(totals)
+    best = max(best for _, best in totals.values())
+    full = sum(score >= best > 0 for score, best in totals.values())
+    share = f" ({mean / best:.0%})" if best else ""
     return (
-        f"{len(grades)} students: mean {points(total)} of {points(best)} points{share}, "
+        f"{len(totals)} students: mean {points(mean)} of {points(best)} points{share}, "
         f"{full} with full marks"
     )
 
@@ -397,17 +446,23 @@ def _of(count_of: tuple[str, int] | None, students: int) -> str:
     return "none" if count_of is None else f"{count_of[1]} of {students}: {count_of[0]}"
 
 
-def summary_text(grades: list[StudentGrade]) -> str:
+def _tried(s: ExerciseSummary) -> str:
+    missing = s.students - s.attempted
+    return f" ({missing} did not answer it)" if missing else ""
+
+
+def summary_text(rows: list[GradeRow]) -> str:
     """The class summary as plain text."""
-    lines = [f"Class summary -- {summary_line(grades)}", ""]
-    for s in class_summary(grades):
+    lines = [f"Class summary -- {summary_line(rows)}", ""]
+    for s in class_summary(rows):
         statuses = ", ".join(f"{status} {n}" for status, n in s.statuses.items())
         lines += [
-            f"{s.exercise}: passed {s.passed} of {s.students} ({s.pass_rate:.0%}), "
-            f"mean score {points(s.mean_score)} of {points(s.max_score)}",
+            f"{s.exercise}: passed {s.passed} of {s.attempted} who answered it "
+            f"({s.pass_rate:.0%}){_tried(s)}, mean score {points(s.mean_score)} of "
+            f"{points(s.max_score)}",
             f"  statuses: {statuses}",
-            f"  most common first divergence: {_of(s.divergence, s.students)}",
-            f"  most common known-wrong variant: {_of(s.variant, s.students)}",
+            f"  most common first divergence: {_of(s.divergence, s.attempted)}",
+            f"  most common known-wrong variant: {_of(s.variant, s.attempted)}",
         ]
     return "\n".join(lines) + "\n"
 
@@ -421,7 +476,9 @@ def summary_plot(summaries: list[ExerciseSummary]) -> bytes:
     rows = np.arange(len(summaries))
     rates = [100 * s.pass_rate for s in summaries]
     means = [100 * s.mean_score / s.max_score if s.max_score else 0.0 for s in summaries]
-    axes.barh(rows - 0.2, rates, height=0.4, label="students passed (%)", color="#2e7d32")
+    axes.barh(
+        rows - 0.2, rates, height=0.4, label="passed, of those who answered (%)", color="#2e7d32"
+    )
     axes.barh(rows + 0.2, means, height=0.4, label="mean score (% of points)", color="#1565c0")
     axes.set_yticks(rows, [s.exercise for s in summaries])
     axes.invert_yaxis()
@@ -433,32 +490,32 @@ def summary_plot(summaries: list[ExerciseSummary]) -> bytes:
     return buffer.getvalue()
 
 
-def summary_html(grades: list[StudentGrade]) -> str:
+def summary_html(rows: list[GradeRow]) -> str:
     """The class summary as one self-contained HTML page, with the plot inline."""
-    summaries = class_summary(grades)
+    summaries = class_summary(rows)
     plot = base64.b64encode(summary_plot(summaries)).decode("ascii")
-    rows = "\n".join(
+    table = "\n".join(
         "<tr>"
         + "".join(
             f"<td>{html.escape(cell)}</td>"
             for cell in (
                 s.exercise,
-                f"{s.passed} of {s.students} ({s.pass_rate:.0%})",
+                f"{s.passed} of {s.attempted} ({s.pass_rate:.0%}){_tried(s)}",
                 f"{points(s.mean_score)} of {points(s.max_score)}",
                 ", ".join(f"{status} {n}" for status, n in s.statuses.items()),
-                _of(s.divergence, s.students),
-                _of(s.variant, s.students),
+                _of(s.divergence, s.attempted),
+                _of(s.variant, s.attempted),
             )
         )
         + "</tr>"
         for s in summaries
     )
     body = (
-        f"<h1>Class summary</h1><p>{html.escape(summary_line(grades))}</p>\n"
+        f"<h1>Class summary</h1><p>{html.escape(summary_line(rows))}</p>\n"
         f"<p><img alt='pass rate and mean score per exercise' src='data:image/png;base64,{plot}'>"
-        "</p>\n<table><tr><th>exercise</th><th>passed</th><th>mean score</th><th>statuses</th>"
-        "<th>most common first divergence</th><th>most common known-wrong variant</th></tr>\n"
-        f"{rows}\n</table>"
+        "</p>\n<table><tr><th>exercise</th><th>passed, of those who answered</th>"
+        "<th>mean score</th><th>statuses</th><th>most common first divergence</th>"
+        f"<th>most common known-wrong variant</th></tr>\n{table}\n</table>"
     )
     return _page("Class summary", body)
 
@@ -466,16 +523,30 @@ def summary_html(grades: list[StudentGrade]) -> str:
 # --- writing --------------------------------------------------------------------------------
 
 
-def write_grades_csv(grades: list[StudentGrade], path: Path) -> None:
+def csv_cell(text: str) -> str:
+    """`text` as a CSV cell no spreadsheet runs as a formula (OWASP's rule: a leading quote).
+
+    >>> csv_cell("=HYPERLINK(1)"), csv_cell("ann")
+    ("'=HYPERLINK(1)", 'ann')
+    """
+    return f"'{text}" if text[:1] in ("=", "+", "-", "@", "\t", "\r") else text
+
+
+def write_grades_csv(rows: list[GradeRow], path: Path) -> None:
     """``grades.csv``: one row per student and exercise (`CSV_COLUMNS`)."""
     with open(path, "w", newline="", encoding="utf-8") as file:
         writer = csv.writer(file)
         writer.writerow(CSV_COLUMNS)
-        for student in grades:
-            for g in student.grades:
-                writer.writerow(
-                    [student.student, g.exercise, points(g.score), points(g.max_score), g.status]
-                )
+        for row in rows:
+            writer.writerow(
+                [
+                    csv_cell(row.student),
+                    row.exercise,
+                    points(row.score),
+                    points(row.max_score),
+                    row.status,
+                ]
+            )
 
 
 def output_folder(out_dir: str | Path) -> Path:
@@ -484,6 +555,14 @@ def output_folder(out_dir: str | Path) -> Path:
     if out_dir.exists() and not out_dir.is_dir():
         raise NotADirectoryError(f"OUT_DIR {str(out_dir)!r} exists and is not a folder")
     return out_dir
+
+
+def _write_class(rows: list[GradeRow], out_dir: Path) -> None:
+    write_grades_csv(rows, out_dir / "grades.csv")
+    data = {"format": "scanviz grades 1", "rows": [dataclasses.asdict(r) for r in rows]}
+    (out_dir / "grades.json").write_text(json.dumps(data, indent=1), encoding="utf-8")
+    (out_dir / "summary.txt").write_text(summary_text(rows), encoding="utf-8")
+    (out_dir / "summary.html").write_text(summary_html(rows), encoding="utf-8")
 
 
 def write_reports(grades: list[StudentGrade], key: CourseKey, out_dir: str | Path) -> None:
@@ -501,7 +580,6 @@ def write_reports(grades: list[StudentGrade], key: CourseKey, out_dir: str | Pat
     out_dir = output_folder(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     reveal = key.reveal == "always"
-    write_grades_csv(grades, out_dir / "grades.csv")
     for student, name in zip(grades, folder_names(s.student for s in grades), strict=True):
         folder = out_dir / name
         folder.mkdir(exist_ok=True)
@@ -509,5 +587,49 @@ def write_reports(grades: list[StudentGrade], key: CourseKey, out_dir: str | Pat
         (folder / "feedback.md").write_text(feedback_markdown(student, reveal), encoding="utf-8")
         results = gradescope_results(student, reveal, student.seconds)
         (folder / "results.json").write_text(json.dumps(results, indent=1), encoding="utf-8")
-    (out_dir / "summary.txt").write_text(summary_text(grades), encoding="utf-8")
-    (out_dir / "summary.html").write_text(summary_html(grades), encoding="utf-8")
+    _write_class(grade_rows(grades), out_dir)
+
+
+def read_rows(folder: str | Path) -> list[GradeRow]:
+    """The rows of a graded folder's ``grades.json``; ValueError if it has none or it is not one."""
+    path = Path(folder) / "grades.json"
+    try:
+        data = json.loads(read_bounded(path))
+        if data.get("format") != "scanviz grades 1":
+            raise ValueError("it is not a scanviz grades file")
+        return [GradeRow(**row) for row in data["rows"]]
+    except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
+        raise ValueError(
+            f"{str(path)!r} cannot be read as a graded folder's grades: {error}"
+        ) from None
+
+
+def merge_reports(parts: list[str | Path], out_dir: str | Path) -> list[GradeRow]:
+    """Join folders graded in shards into `out_dir`, as one grading of the whole class writes it.
+
+    Each part's student folders are copied (renamed where two parts gave the
+    same folder name); grades.csv, grades.json and the summary are written
+    for the whole class, students in id order. A student in two parts is an
+    error (the parts overlap).
+    """
+    out_dir = output_folder(out_dir)
+    students: dict[str, tuple[Path, str, list[GradeRow]]] = {}
+    for part in map(Path, parts):
+        rows = read_rows(part)
+        ids = list(dict.fromkeys(r.student for r in rows))
+        for student, name in zip(ids, folder_names(ids), strict=True):
+            if student in students:
+                raise ValueError(
+                    f"student {student!r} is in {str(students[student][0])!r} and {str(part)!r}: "
+                    "the parts overlap"
+                )
+            students[student] = (part, name, [r for r in rows if r.student == student])
+    out_dir.mkdir(parents=True, exist_ok=True)
+    ordered = sorted(students)
+    for student, name in zip(ordered, folder_names(ordered), strict=True):
+        part, old, _ = students[student]
+        if (part / old).is_dir():
+            shutil.copytree(part / old, out_dir / name, dirs_exist_ok=True)
+    rows = [row for student in ordered for row in students[student][2]]
+    _write_class(rows, out_dir)
+    return rows

@@ -65,3 +65,54 @@ def test_span_rule_is_called_once_per_sorted_aet():
         reference = reference_outcome(exercise, case)
         rows = [e.y for e in reference.trace if e.kind == "aet_sorted"]
         assert len(rows) == len(reference.calls), case.label
+
+
+# --- hidden cases that every student shares in kind (issue 22) --------------------------------
+
+STUDENTS = ("", "ada", "bo", "cy")  # "" is a class without per_student
+FEATURE_SECRET = "features-secret"
+
+
+@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
+def test_every_feature_is_in_every_students_hidden_cases(exercise):
+    assert exercise.features, "declare the features its hidden cases must exercise"
+    for student in STUDENTS:
+        cases = hidden_cases(exercise, FEATURE_SECRET, 8, student)
+        found = set().union(*(exercise.exercised(c, reference_outcome(exercise, c)) for c in cases))
+        assert set(exercise.features) <= found, (student, set(exercise.features) - found)
+
+
+@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
+def test_answers_that_do_nothing_score_zero_for_every_student(exercise):
+    from scanviz.exercises.core import do_nothing_sources
+
+    cases = [*exercise.public]
+    for student in STUDENTS[:2]:
+        cases += hidden_cases(exercise, FEATURE_SECRET, 8, student)
+    for name, source in do_nothing_sources(exercise).items():
+        verdicts = grade(exercise, source, cases, variants=False)
+        passed = [v.case.label for v in verdicts if v.passed]
+        assert not passed, (name, passed)
+
+
+@pytest.mark.parametrize(
+    ("exercise", "variant"), VARIANTS, ids=[f"{e.id}-{v.name}" for e, v in VARIANTS]
+)
+def test_every_variant_fails_the_hidden_cases_of_every_student(exercise, variant):
+    for student in STUDENTS:
+        cases = hidden_cases(exercise, FEATURE_SECRET, 8, student)
+        verdicts = grade(exercise, variant.source, cases, variants=False)
+        assert not all(v.passed for v in verdicts), student
+
+
+@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.id)
+def test_hidden_cases_run_every_line_of_the_step(exercise):
+    # Each branch of the reference step (a loop exercise: of its solution) runs in every
+    # student's hidden cases, so no branch goes untested for anyone.
+    from .coverage import lines_run, step_lines
+
+    target, compiled = step_lines(exercise)
+    for student in STUDENTS[:2]:
+        cases = hidden_cases(exercise, FEATURE_SECRET, 8, student)
+        missed = target - lines_run(exercise, compiled, cases)
+        assert not missed, (student, sorted(missed))

@@ -246,11 +246,15 @@ def test_shards_split_a_class_and_together_grade_it_whole(tmp_path):
 
 
 def test_grading_refuses_without_a_jail_and_says_how_to_go_on(tmp_path, monkeypatch):
-    monkeypatch.setattr(launch, "unavailable", lambda: "bubblewrap is not installed")
-    with pytest.raises(JailUnavailable, match="bubblewrap is not installed. Pass --no-jail"):
+    monkeypatch.setattr(
+        launch, "unavailable", lambda jail="bwrap": None if jail == "none" else f"no {jail} here"
+    )
+    with pytest.raises(JailUnavailable, match=r"\(bwrap: no bwrap here\)\. Pass --no-jail"):
         grade_submissions(tmp_path, _key(), progress=False)
+    with pytest.raises(JailUnavailable, match="bwrap: no bwrap here; user: no user here"):
+        grade_submissions(tmp_path, _key(), progress=False, jail="auto")
     _write(tmp_path / "ann.ipynb", _answer(SPAN.solution))
-    grades = grade_submissions(tmp_path, _key(), progress=False, jailed=False)
+    grades = grade_submissions(tmp_path, _key(), progress=False, jail="none")
     assert grades[0].grades[0].status == "passed"
 
 

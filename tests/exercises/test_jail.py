@@ -321,3 +321,43 @@ def test_encoder_gives_the_answer_no_object_of_the_grader():
     # What crosses is data only: a grader object in an argument arrives as its repr.
     plain = Encoder(identify=True).encode((REFERENCES, len))
     assert json.dumps(plain).count('"$r"') == 2
+
+
+SYSTEM_PYTHON = "/usr/bin/python3.11"  # Debian's: the user nobody may run it (the grader's may not)
+
+
+@pytest.fixture
+def user_jail(monkeypatch):
+    """The "user" jail, with an interpreter the user nobody can run (as on Gradescope)."""
+    import sys
+
+    if not os.path.exists(SYSTEM_PYTHON) or sys.version_info[:2] != (3, 11) or os.geteuid():
+        pytest.fail("the user-jail tests need root and Debian's python3.11 (make test installs it)")
+    monkeypatch.setattr(launch, "python_executable", lambda: SYSTEM_PYTHON)
+    launch.unavailable.cache_clear()
+    yield
+    launch.unavailable.cache_clear()
+
+
+def test_the_user_jail_runs_answers_as_nobody_without_processes_or_network(user_jail):
+    assert launch.unavailable("user") is None
+    source = (
+        "import os, socket\nresults = [os.getuid()]\n"
+        "for attempt in (os.fork, lambda: socket.socket(), lambda: open('/etc/shadow')):\n"
+        "    try:\n        results.append(attempt())\n"
+        "    except OSError as error:\n        results.append(type(error).__name__)\n"
+        "print(results)\n" + SPAN.solution
+    )
+    with Session(LIMITS, jail="user") as session:
+        cases = [(c, False) for c in SPAN.public]
+        result = judge_answer(session, SPAN, source, cases, REFERENCES, LIMITS.case_seconds)
+    assert result.status == "passed"
+    assert result.output.strip() == "[65534, 'PermissionError', 'PermissionError', 'PermissionError']"
+
+
+def test_the_user_jail_refuses_while_nobody_can_read_the_reference(user_jail, tmp_path):
+    from scanviz.exercises.grading import jail_or_refuse
+
+    assert launch.readable_by_nobody(launch.reference_file())  # this checkout is open to all
+    with pytest.raises(ValueError, match="the 'user' jail runs answers as the user nobody"):
+        jail_or_refuse("user", tmp_path)

@@ -15,7 +15,7 @@ from fractions import Fraction
 
 import pytest
 
-from scanviz.exercises import report
+from scanviz.exercises import judging, report
 from scanviz.exercises.catalog import get
 from scanviz.exercises.core import (
     compile_answer,
@@ -85,12 +85,13 @@ def grades(span_rule, judged):
         StudentGrade(name, f"{name}.ipynb", [_grade(span_rule, judged, name, source)])
         for name, source in answers.items()
     ]
-    # The worker's message quotes the first error; here a hidden case's, carrying its inputs.
+    # The grader's message quotes a public case's error only, never a hidden one's inputs.
     leaker = students[-1].grades[0]
-    hidden_error = next(v.error for v in leaker.verdicts if v.hidden)
+    errors = [v for v in leaker.verdicts if v.error]
     students[-1].grades[0] = replace(
-        leaker, status="error", message=f"your code raised {hidden_error} (7 of 7 cases)"
+        leaker, status="error", message=judging._error_message(errors, len(leaker.verdicts))
     )
+    students[0].grades[0] = replace(students[0].grades[0], output="debugging <b>print</b>\n")
     missing = ExerciseGrade("dave", "span_rule", 0.0, span_rule.points, "no answer", "no marker")
     students.append(StudentGrade("dave", "dave.ipynb", [missing]))
     return students
@@ -221,35 +222,63 @@ def test_hidden_inputs_are_absent_unless_the_key_reveals_them(written, grades):
     never = _all_text(written["never"])
     assert [s for s in secrets if s in never] == []
     assert "messages are not shown for hidden cases" in never
-    assert "ValueError (in a hidden case: message not shown) (7 of 7 cases)" in never
+    assert "your code raised ValueError: LEAK [(Fraction(" in never  # a public case's, in full
+    assert "(in 7 of 7 cases)" in never
     always = _all_text(written["always"])
     assert any(s in always for s in secrets)
 
 
 def test_summary_names_the_most_common_variant_and_divergence(written, grades):
+    # Rates are over the 5 students who answered: dave, who did not, counts apart.
     text = (written["never"] / "summary.txt").read_text()
-    assert "span_rule: passed 1 of 6 (17%)" in text
-    assert "most common known-wrong variant: 2 of 6: floor_for_ceil" in text
+    assert "span_rule: passed 1 of 5 who answered it (20%) (1 did not answer it)" in text
+    assert "most common known-wrong variant: 2 of 5: floor_for_ceil" in text
     floor_signatures = [v.signature for v in grades[1].grades[0].verdicts if not v.passed]
     signature = max(set(floor_signatures), key=floor_signatures.count)
-    assert f"most common first divergence: 2 of 6: {signature}" in text
+    assert f"most common first divergence: 2 of 5: {signature}" in text
     assert "statuses: failed 3, passed 1, error 1, no answer 1" in text
     page = (written["never"] / "summary.html").read_text()
-    assert "2 of 6: floor_for_ceil" in page and "data:image/png;base64," in page
+    assert "2 of 5: floor_for_ceil" in page and "data:image/png;base64," in page
 
 
 def test_summary_line():
     empty = ExerciseGrade("x", "span_rule", 0.0, 4, "no answer")
     full = ExerciseGrade("y", "span_rule", 4.0, 4, "passed")
     grades = [StudentGrade("x", "x.ipynb", [empty]), StudentGrade("y", "y.ipynb", [full])]
-    assert report.summary_line(grades) == "2 students: mean 2 of 4 points (50%), 1 with full marks"
+    rows = report.grade_rows(grades)
+    assert report.summary_line(rows) == "2 students: mean 2 of 4 points (50%), 1 with full marks"
 
 
-def test_gradescope_tests_of_an_answer_scored_zero_fail(grades):
-    passed = grades[0].grades[0]
-    assert passed.status == "passed"
-    timed_out = replace(passed, score=0.0, status="timeout", message="ran out of time (60 s)")
-    tests = report.gradescope_tests(timed_out, reveal=False)
-    assert [(t["score"], t["status"]) for t in tests] == [(0.0, "failed"), (0.0, "failed")]
-    assert tests[0]["output"].startswith("```\nran out of time (60 s)\n```")
-    assert [t["max_score"] for t in tests] == pytest.approx([4 * 4 / 7, 4 * 3 / 7])
+def test_csv_cells_cannot_be_formulas(tmp_path):
+    # Issue 22: a student id starting with '=' went into grades.csv as it was.
+    ids = ["=HYPERLINK(\"http://x\")", "+1", "-2", "@SUM(A1)", "ann"]
+    grades = [
+        StudentGrade(i, f"{i}.ipynb", [ExerciseGrade(i, "span_rule", 4.0, 4, "passed")]) for i in ids
+    ]
+    report.write_reports(grades, key_with("never"), tmp_path)
+    with open(tmp_path / "grades.csv", newline="", encoding="utf-8") as file:
+        cells = [row[0] for row in csv.reader(file)][1:]
+    assert cells == ["'=HYPERLINK(\"http://x\")", "'+1", "'-2", "'@SUM(A1)", "ann"]
+
+
+def test_what_the_public_cases_printed_is_in_the_feedback_escaped(written):
+    page = (written["never"] / "alice" / "feedback.html").read_text()
+    assert "debugging &lt;b&gt;print&lt;/b&gt;" in page
+    assert "debugging <b>print</b>" in (written["never"] / "alice" / "feedback.md").read_text()
+
+
+def test_shards_merge_into_the_reports_of_one_grading(grades, tmp_path):
+    ordered = sorted(grades, key=lambda s: s.student)  # grading lists students in id order
+    whole = tmp_path / "whole"
+    report.write_reports(ordered, key_with("never"), whole)
+    parts = [tmp_path / "part1", tmp_path / "part2"]
+    report.write_reports(ordered[::2], key_with("never"), parts[0])
+    report.write_reports(ordered[1::2], key_with("never"), parts[1])
+    merged = tmp_path / "merged"
+    report.merge_reports(parts, merged)
+    for name in ("grades.csv", "grades.json", "summary.txt"):
+        assert (merged / name).read_text() == (whole / name).read_text(), name
+    files = sorted(str(p.relative_to(merged)) for p in merged.rglob("*") if p.is_file())
+    assert files == sorted(str(p.relative_to(whole)) for p in whole.rglob("*") if p.is_file())
+    with pytest.raises(ValueError, match="the parts overlap"):
+        report.merge_reports([parts[0], parts[0]], tmp_path / "twice")

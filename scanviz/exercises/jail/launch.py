@@ -16,9 +16,19 @@ capabilities; and the system-call filter of `scanviz.exercises.jail.seccomp`,
 which forbids new processes. The runner then sets its own resource limits
 (CPU, memory, file size, open files).
 
-`plain_command` runs the same runner with the same runtime but no jail: for
-a student's own check on a machine without bubblewrap, and for a teacher who
-passes ``--no-jail`` for submissions they trust.
+Three jails (`JAILS`), chosen by `choose`:
+
+- ``"bwrap"``: the above; what grading needs by default.
+- ``"user"``: where bubblewrap cannot make namespaces but the grader is root
+  (a Gradescope container), the runner runs as the unprivileged user
+  ``nobody`` in a private folder, with the same runtime (numpy copied in),
+  limits and system-call filter, which the runner loads itself (so no
+  process and no network socket either). What it can read is what
+  ``nobody`` may read: the key, the submissions and scanviz must be closed
+  to others, which grading checks first (`readable_by_nobody`).
+- ``"none"``: the same runner, runtime, limits and (on Linux) filter, but no
+  other barrier: a student's own check, or a teacher's run on submissions
+  they trust (``--no-jail``).
 """
 
 from __future__ import annotations
@@ -48,12 +58,18 @@ class JailUnavailable(RuntimeError):
     """The jail cannot start on this machine; the message says why and what to do."""
 
 
+JAILS = ("bwrap", "user", "none")
+NOBODY = 65534  # the unprivileged user of the "user" jail (and the uid inside bubblewrap)
+
+
 @functools.cache
-def runtime() -> Path:
+def runtime(copy_numpy: bool = False) -> Path:
     """The runtime folder of this process (made once, removed at exit): ``lib/`` and ``site/``.
 
     ``lib`` holds the runner, wire and the events-only scanviz; ``site``
-    links to numpy (the plain runner's view of what the jail binds).
+    links to numpy (the plain runner's view of what the jail binds), or holds
+    a copy of it (`copy_numpy`: for ``nobody``, who may not read the grader's
+    environment).
     """
     root = Path(tempfile.mkdtemp(prefix="scanviz-runtime-"))
     atexit.register(shutil.rmtree, root, ignore_errors=True)
@@ -68,7 +84,12 @@ def runtime() -> Path:
     site = root / "site"
     site.mkdir()
     for name, path in _numpy_dirs().items():
-        (site / name).symlink_to(path)
+        if copy_numpy:
+            shutil.copytree(
+                path, site / name, ignore=shutil.ignore_patterns("tests", "__pycache__")
+            )
+        else:
+            (site / name).symlink_to(path)
     for path in [root, *root.rglob("*")]:
         if not path.is_symlink():
             path.chmod(0o755 if path.is_dir() else 0o644)
@@ -98,9 +119,12 @@ def runner_arguments(limits: dict, lib: str, site: str) -> list[str]:
     return ["-I", "-S", "-B", f"{lib}/runner.py", json.dumps(limits), site]
 
 
-def plain_command(limits: dict) -> list[str]:
-    """The runner without a jail (same runtime, same limits, Python's own flags to isolate it)."""
-    root = runtime()
+def plain_command(limits: dict, copy_numpy: bool = False) -> list[str]:
+    """The runner without bubblewrap (same runtime, same limits, Python's flags to isolate it);
+    the runner loads the system-call filter itself where it can."""
+    root = runtime(copy_numpy)
+    if seccomp.supported() and sys.platform == "linux":
+        limits = {**limits, "seccomp": seccomp.program().hex()}
     return [python_executable(), *runner_arguments(limits, f"{root}/lib", f"{root}/site")]
 
 
@@ -196,6 +220,27 @@ ENVIRONMENT = {
 """The runner's whole environment (nothing of the grader's: no secret can be in it)."""
 
 
+def process(jail: str, limits: dict, folder: str) -> dict:
+    """Popen's arguments that start the runner in `jail`, working in the private `folder`
+    (bubblewrap gives it a /tmp instead); the caller closes the ``pass_fds`` once started."""
+    if jail == "bwrap":
+        fd = filter_file()
+        return {"args": jail_command(limits, fd), "pass_fds": [fd], "env": {}}
+    environment = {**ENVIRONMENT, "HOME": folder, "TMPDIR": folder}
+    if jail == "none":
+        return {"args": plain_command(limits), "cwd": folder, "env": environment}
+    os.chown(folder, NOBODY, NOBODY)
+    arguments = {
+        "args": plain_command(limits, copy_numpy=True),
+        "cwd": folder,
+        "env": environment,
+        "user": NOBODY,
+        "group": NOBODY,
+        "extra_groups": [],
+    }
+    return arguments
+
+
 def filter_file() -> int:
     """A file descriptor holding the system-call filter, positioned at its start (caller closes)."""
     fd = os.memfd_create("scanviz-seccomp", 0) if hasattr(os, "memfd_create") else None
@@ -209,16 +254,22 @@ def filter_file() -> int:
 
 
 @functools.cache
-def unavailable() -> str | None:
-    """Why the jail cannot start here (None if it can): tried once per process."""
+def unavailable(jail: str = "bwrap") -> str | None:
+    """Why `jail` cannot start here (None if it can): tried once per process."""
+    if jail == "none":
+        return None
     if sys.platform != "linux":
         return f"the jail needs Linux (this is {sys.platform})"
-    if shutil.which("bwrap") is None:
-        return "bubblewrap is not installed (Debian and Ubuntu: apt-get install bubblewrap)"
     if not seccomp.supported():
         import platform
 
         return f"the system-call filter does not know this architecture ({platform.machine()})"
+    return _bwrap_unavailable() if jail == "bwrap" else _user_unavailable()
+
+
+def _bwrap_unavailable() -> str | None:
+    if shutil.which("bwrap") is None:
+        return "bubblewrap is not installed (Debian and Ubuntu: apt-get install bubblewrap)"
     fd = filter_file()
     try:
         argv = jail_command({}, fd)
@@ -230,8 +281,63 @@ def unavailable() -> str | None:
         return f"bubblewrap could not be started: {error}"
     finally:
         os.close(fd)
+    return _probe_failure(done, "bubblewrap cannot make the jail on this machine")
+
+
+def _user_unavailable() -> str | None:
+    if os.geteuid() != 0:
+        return "the 'user' jail runs answers as the user nobody, which needs the grader to be root"
+    root = runtime(copy_numpy=True)
+    check = "import numpy, os; os.fork()"
+    try:
+        done = subprocess.run(
+            plain_command({}, copy_numpy=True)[:1]
+            + ["-I", "-S", "-c", _PROBE.format(program=seccomp.program().hex(), check=check)],
+            capture_output=True,
+            timeout=PROBE_SECONDS,
+            check=False,
+            user=NOBODY,
+            group=NOBODY,
+            extra_groups=[],
+            cwd="/",
+            env={**ENVIRONMENT, "SCANVIZ_RUNTIME": str(root)},
+        )
+    except (OSError, subprocess.SubprocessError) as error:
+        return f"the user nobody cannot run Python here: {error}"
+    return _probe_failure(done, "the 'user' jail cannot start on this machine")
+
+
+_PROBE = (  # as the runner does: the runtime on the path, the filter loaded, then `check`
+    "import os, sys; root = os.environ['SCANVIZ_RUNTIME']; sys.path[:0] = [root + '/lib', "
+    "root + '/site']; import runner; runner.load_filter(bytes.fromhex({program!r})); {check}"
+)
+
+
+def _probe_failure(done: subprocess.CompletedProcess, what: str) -> str | None:
+    """None if the probe failed to fork as it should, else why the jail cannot start."""
     stderr = done.stderr.decode("utf-8", "replace").strip()
-    if done.returncode != 1 or "PermissionError" not in stderr:
-        last = stderr.splitlines()[-1] if stderr else f"exit status {done.returncode}"
-        return f"bubblewrap cannot make the jail on this machine: {last}"
-    return None
+    if done.returncode == 1 and stderr.endswith(
+        "PermissionError: [Errno 1] Operation not permitted"
+    ):
+        return None
+    last = stderr.splitlines()[-1] if stderr else f"exit status {done.returncode}"
+    return f"{what}: {last}"
+
+
+def readable_by_nobody(path: str | os.PathLike) -> bool:
+    """Whether the user nobody could read `path` (the kernel is asked, with test(1) as nobody)."""
+    done = subprocess.run(
+        ["test", "-r", os.fspath(path)],
+        timeout=PROBE_SECONDS,
+        check=False,
+        user=NOBODY,
+        group=NOBODY,
+        extra_groups=[],
+        cwd="/",
+    )
+    return done.returncode == 0
+
+
+def reference_file() -> Path:
+    """A file of the reference (the scan converter): nothing in a jail may read it."""
+    return _PACKAGE / "raster" / "scanline.py"

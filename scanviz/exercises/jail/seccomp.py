@@ -11,11 +11,15 @@ the runner. `program()` builds it for this machine's architecture
   and a fork bomb ends at once (threads stay possible, inside the limits);
 - ``clone3`` fails with ENOSYS, so the C library falls back to ``clone``,
   whose flags the filter can read;
+- ``socket`` fails with EPERM for every family but ``AF_UNIX``: no network,
+  even where no network namespace can be made;
 - namespaces, mounts, ptrace, other processes' memory, BPF, perf, io_uring,
   keyrings, modules and kexec fail with EPERM.
 
-Everything else is allowed: the mount, PID and network namespaces and the
-resource limits do the rest (``scanviz.exercises.jail``).
+Everything else is allowed: the mount, PID and network namespaces (or the
+unprivileged user) and the resource limits do the rest
+(``scanviz.exercises.jail``). bubblewrap loads the filter (``--seccomp``);
+without bubblewrap the runner loads it itself before the answer runs.
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ _ERRNO = 0x00050000
 # offsets in struct seccomp_data
 _NR, _ARCH, _ARG0 = 0, 4, 16
 _CLONE_THREAD = 0x00010000
+_AF_UNIX = 1
 _X32_BIT = 0x40000000
 
 # (audit architecture, {name: number}); generic numbers for AArch64 (asm-generic/unistd.h)
@@ -53,7 +58,7 @@ _ARCHITECTURES = {
             "init_module": 175, "finit_module": 313, "delete_module": 176,
             "open_by_handle_at": 304, "name_to_handle_at": 303, "fsopen": 430, "fsconfig": 431,
             "fsmount": 432, "fspick": 433, "move_mount": 429, "open_tree": 428,
-            "mount_setattr": 442, "personality": 135,
+            "mount_setattr": 442, "personality": 135, "socket": 41,
         },
     ),
     "aarch64": (
@@ -67,7 +72,7 @@ _ARCHITECTURES = {
             "kexec_load": 104, "kexec_file_load": 294, "init_module": 105, "finit_module": 273,
             "delete_module": 106, "open_by_handle_at": 265, "name_to_handle_at": 264,
             "fsopen": 430, "fsconfig": 431, "fsmount": 432, "fspick": 433, "move_mount": 429,
-            "open_tree": 428, "mount_setattr": 442, "personality": 92,
+            "open_tree": 428, "mount_setattr": 442, "personality": 92, "socket": 198,
         },
     ),
 }  # fmt: skip
@@ -81,7 +86,7 @@ def supported() -> bool:
 def program(machine: str | None = None) -> bytes:
     """The filter as bubblewrap reads it: an array of ``struct sock_filter`` (8 bytes each)."""
     arch, numbers = _ARCHITECTURES[machine or platform.machine()]
-    denied = sorted(n for name, n in numbers.items() if name not in ("clone", "clone3"))
+    denied = sorted(n for name, n in numbers.items() if name not in ("clone", "clone3", "socket"))
     # Each entry: (code, jump if true, jump if false, k); jumps are counted in instructions.
     labels: dict[str, int] = {}
     code: list[tuple] = [
@@ -94,13 +99,18 @@ def program(machine: str | None = None) -> bytes:
         code.append((_JGE, "kill", None, _X32_BIT))
     code.append((_JEQ, "clone", None, numbers["clone"]))
     code.append((_JEQ, "enosys", None, numbers["clone3"]))
+    code.append((_JEQ, "socket", None, numbers["socket"]))
     code.extend((_JEQ, "eperm", None, n) for n in denied)
     code.append((_RET, 0, 0, _ALLOW))
+    labels["socket"] = len(code)
+    code.append((_LD_W_ABS, 0, 0, _ARG0))  # the address family
+    code.append((_JEQ, "allow", "eperm", _AF_UNIX))
     labels["clone"] = len(code)
     code.append((_LD_W_ABS, 0, 0, _ARG0))  # the low 32 bits of the flags (little-endian)
-    code.append((_JSET, 1, 0, _CLONE_THREAD))
+    code.append((_JSET, "allow", "eperm", _CLONE_THREAD))
     labels["eperm"] = len(code)
     code.append((_RET, 0, 0, _ERRNO | errno.EPERM))
+    labels["allow"] = len(code)
     code.append((_RET, 0, 0, _ALLOW))
     labels["enosys"] = len(code)
     code.append((_RET, 0, 0, _ERRNO | errno.ENOSYS))

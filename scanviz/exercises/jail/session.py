@@ -1,7 +1,7 @@
 """The grader's end of the jail: start the runner, send it requests, check every reply.
 
-A `Session` is one runner process for one submission (`launch`: jailed, or
-plain with ``jailed=False``). `load` runs an answer cell in it; `RemoteAnswer`
+A `Session` is one runner process for one submission, in one of the jails
+of `launch` (``jail="bwrap"``, ``"user"`` or ``"none"``). `load` runs an answer cell in it; `RemoteAnswer`
 is the answer's function as the grader's algorithm calls it: each call's
 arguments go over as plain data (`wire`), and what comes back is decoded
 and checked -- a value the answer returned, the text of what it raised,
@@ -79,11 +79,13 @@ class JailStopped(BaseException):
 class Session:
     """One runner process: started lazily, restarted after it stops (see the module docstring)."""
 
-    def __init__(self, limits: Limits = Limits(), *, jailed: bool = True) -> None:
-        if jailed and (reason := launch.unavailable()) is not None:
+    def __init__(self, limits: Limits = Limits(), *, jail: str = "bwrap") -> None:
+        if jail not in launch.JAILS:
+            raise ValueError(f"'jail' must be one of {launch.JAILS}; got {jail!r}")
+        if (reason := launch.unavailable(jail)) is not None:
             raise launch.JailUnavailable(reason)
         self.limits = limits
-        self.jailed = jailed
+        self.jail = jail
         self.process: subprocess.Popen | None = None
         self.deadline: float | None = None
         self.timeout_seconds = 0.0
@@ -106,24 +108,16 @@ class Session:
             "replies": reply_write,
         }
         passed = [request_read, reply_write]
-        if self.jailed:
-            filter_fd = launch.filter_file()
-            passed.append(filter_fd)
-            argv, cwd, env = launch.jail_command(limits, filter_fd), None, {}
-        else:
-            argv = launch.plain_command(limits)
-            cwd = self.folder.name
-            env = {**launch.ENVIRONMENT, "HOME": cwd, "TMPDIR": cwd}
+        arguments = launch.process(self.jail, limits, self.folder.name)
+        passed += arguments.pop("pass_fds", [])
         self._cpu_before = _children_cpu()
         try:
             self.process = subprocess.Popen(
-                argv,
+                **arguments,
                 stdin=subprocess.DEVNULL,
                 stdout=self.capture,
                 stderr=self.capture,
                 pass_fds=passed,
-                cwd=cwd,
-                env=env,
                 start_new_session=True,
             )
         finally:
@@ -246,7 +240,7 @@ class Session:
         code = self.process.returncode
         cpu = _children_cpu() - self._cpu_before
         if (
-            self.jailed and code > 128
+            self.jail == "bwrap" and code > 128
         ):  # bubblewrap exits with 128 + the signal that killed its child
             code = -(code - 128)
         if code < 0:
@@ -260,11 +254,8 @@ class Session:
                     f"({self.limits.cpu_seconds:g} s) and was killed ({name})",
                 )
             return JailStopped("crashed", f"the process running the answer was killed by {name}")
-        last = self.output(0, None).strip().splitlines()[-1:] or [""]
-        tail = f": {last[0][:300]}" if last[0] else ""
-        return JailStopped(
-            "crashed",
-            f"the process running the answer exited (status {code}) before replying{tail}",
+        return JailStopped(  # no quote of what it printed: that may come from a hidden case
+            "crashed", f"the process running the answer exited (status {code}) before replying"
         )
 
     # --- what the answer printed ---------------------------------------------------------
