@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: lab test lint bench clean chromium
+.PHONY: lab test lint bench clean chromium jail
 
 # numba's on-disk cache is keyed by each kernel's own file, not by the modules it calls:
 # drop every cached kernel whenever any package source changes.
@@ -35,10 +35,15 @@ chromium:
 	|| (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends chromium) \
 	|| echo "scanviz: could not install chromium; the browser test will skip"
 
+# Debian's bubblewrap: grading runs every student answer in its jail (the tests need it).
+jail:
+	@command -v bwrap >/dev/null \
+	|| (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends bubblewrap)
+
 lint: $(STAMP)
 	$(BIN)/ruff check scanviz tests
 
-test: lint $(NUMBA_STAMP) chromium
+test: lint $(NUMBA_STAMP) chromium jail
 	$(BIN)/python -m scanviz conformance
 	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
 

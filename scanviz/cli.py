@@ -588,17 +588,47 @@ def _cmd_check(args: argparse.Namespace) -> None:
     )
 
 
+def _shard(text: str) -> tuple[int, int]:
+    """K/N: part K of N (1 <= K <= N)."""
+    try:
+        part, parts = (int(n) for n in text.split("/"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be K/N, e.g. 1/4; got {text!r}") from None
+    if not 1 <= part <= parts:
+        raise argparse.ArgumentTypeError(f"must be K/N with 1 <= K <= N; got {text!r}")
+    return part, parts
+
+
 def _cmd_grade(args: argparse.Namespace) -> None:
+    if args.submissions[0] == "merge" and len(args.submissions) > 1:
+        return _cmd_grade_merge(args)
+    if len(args.submissions) != 1:
+        raise ValueError("give one SUBMISSIONS_DIR (or: grade merge PART_DIR... -o OUT_DIR)")
+    if args.key is None:
+        raise ValueError("the following arguments are required: --key")
     from .exercises.grading import grade_submissions
     from .exercises.key import load_key
-    from .exercises.report import folder_names, output_folder, summary_line, write_reports
+    from .exercises.report import (
+        folder_names,
+        grade_rows,
+        output_folder,
+        summary_line,
+        write_reports,
+    )
 
+    submissions = args.submissions[0]
     out_dir = output_folder(args.out_dir)
-    if out_dir.resolve().is_relative_to(Path(args.submissions).resolve()):
+    if out_dir.resolve().is_relative_to(Path(submissions).resolve()):
         raise ValueError("-o/--output must be a folder outside SUBMISSIONS_DIR")
     key = load_key(args.key)
     grades = grade_submissions(
-        args.submissions, key, jobs=args.jobs, exercises=args.exercises, progress=True
+        submissions,
+        args.key,
+        jobs=args.jobs,
+        exercises=args.exercises,
+        progress=True,
+        shard=args.shard,
+        jail="none" if args.no_jail else args.jail,
     )
     write_reports(grades, key, out_dir)
     folders = folder_names(s.student for s in grades)
@@ -612,7 +642,45 @@ def _cmd_grade(args: argparse.Namespace) -> None:
         if folder != student.student:
             print(f"  student {student.student!r}: folder {folder!r} (sanitized)")
     print(f"{out_dir / 'summary.txt'}, {out_dir / 'summary.html'}: the class summary")
-    print(summary_line(grades))
+    if args.shard is not None:
+        print(f"part {args.shard[0]} of {args.shard[1]}: join the parts with `grade merge`")
+    print(summary_line(grade_rows(grades)))
+
+
+def _cmd_grade_merge(args: argparse.Namespace) -> None:
+    from .exercises.report import merge_reports, output_folder, summary_line
+
+    parts = args.submissions[1:]
+    out_dir = output_folder(args.out_dir)
+    rows = merge_reports(parts, out_dir)
+    students = len({r.student for r in rows})
+    print(f"{out_dir}: {len(parts)} parts joined, {students} students, {len(rows)} rows")
+    print(summary_line(rows))
+
+
+def _cmd_exercises_gradescope(args: argparse.Namespace) -> None:
+    from .exercises.platforms import gradescope_zip
+
+    names = gradescope_zip(args.zip, args.key)
+    print(
+        f"{args.zip}: a Gradescope autograder ({len(names)} files: setup.sh, run_autograder, "
+        "key.toml and scanviz); upload it as the assignment's autograder"
+    )
+
+
+def _cmd_exercises_prairielearn(args: argparse.Namespace) -> None:
+    from .exercises.platforms import prairielearn_tests
+
+    for path in prairielearn_tests(args.out_dir, args.key):
+        print(path)
+    print(f"{args.out_dir}: the question's tests/ files for PrairieLearn (see README.txt)")
+
+
+def _cmd_exercises_autograde(args: argparse.Namespace) -> None:
+    from .exercises.platforms import autograde
+
+    results = autograde(args.submission, args.key, args.platform, args.out, jail=args.jail)
+    print(f"{args.out}: {args.platform} results, score {results.get('score', 0):g}")
 
 
 def _add_exercise_commands(commands) -> None:
@@ -620,7 +688,9 @@ def _add_exercise_commands(commands) -> None:
         "exercises", help="the exercise catalog: list it, release notebooks, make a course key"
     )
     what = exercises.add_subparsers(
-        dest="exercises_command", required=True, metavar="list|release|key"
+        dest="exercises_command",
+        required=True,
+        metavar="list|release|key|gradescope|prairielearn|autograde",
     )
     listing = what.add_parser("list", help="number, id, stage, kind, points and title of each")
     listing.set_defaults(run=_cmd_exercises_list)
@@ -642,14 +712,43 @@ def _add_exercise_commands(commands) -> None:
         help="the assignment's exercises (default: all of them)",
     )
     new.set_defaults(run=_cmd_exercises_key_new)
+    gradescope = what.add_parser(
+        "gradescope", help="build a Gradescope autograder zip for a course key"
+    )
+    gradescope.add_argument("zip", metavar="AUTOGRADER.zip")
+    gradescope.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
+    gradescope.set_defaults(run=_cmd_exercises_gradescope)
+    prairielearn = what.add_parser(
+        "prairielearn", help="write the tests/ files of PrairieLearn's external grader"
+    )
+    prairielearn.add_argument("out_dir", metavar="OUT_DIR")
+    prairielearn.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
+    prairielearn.set_defaults(run=_cmd_exercises_prairielearn)
+    autograde = what.add_parser(
+        "autograde", help="grade one submission into a platform's results.json (the entrypoint)"
+    )
+    autograde.add_argument("submission", metavar="SUBMISSION", help="a notebook or a folder")
+    autograde.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
+    autograde.add_argument("--platform", required=True, choices=["gradescope", "prairielearn"])
+    autograde.add_argument("-o", "--output", dest="out", required=True, metavar="RESULTS.json")
+    autograde.add_argument("--jail", default="auto", choices=["auto", "bwrap", "user", "none"])
+    autograde.set_defaults(run=_cmd_exercises_autograde)
     check = commands.add_parser(
         "check", help="a student's check: the public cases of a notebook's answers"
     )
     check.add_argument("notebook", metavar="NOTEBOOK")
     check.set_defaults(run=_cmd_check)
-    grade = commands.add_parser("grade", help="grade a folder of notebooks (one per student)")
-    grade.add_argument("submissions", metavar="SUBMISSIONS_DIR")
-    grade.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
+    grade = commands.add_parser(
+        "grade",
+        help="grade a folder of notebooks (one per student); grade merge PART_DIR...: join shards",
+    )
+    grade.add_argument(
+        "submissions",
+        nargs="+",
+        metavar="SUBMISSIONS_DIR",
+        help="the class's folder; or: merge PART_DIR... (folders graded with --shard)",
+    )
+    grade.add_argument("--key", metavar="KEY.toml", help="the course key")
     grade.add_argument("-o", "--output", dest="out_dir", required=True, metavar="OUT_DIR")
     grade.add_argument(
         "--jobs", type=_at_least_one, default=1, metavar="N", help="submissions graded at once"
@@ -659,6 +758,21 @@ def _add_exercise_commands(commands) -> None:
         type=_exercise_ids,
         metavar="ID,ID,...",
         help="grade only these exercises of the key (default: all of the key's)",
+    )
+    grade.add_argument(
+        "--shard", type=_shard, metavar="K/N", help="grade part K of N of the students (by id)"
+    )
+    grade.add_argument(
+        "--jail",
+        default="bwrap",
+        choices=["bwrap", "user", "auto"],
+        help="where answers run: bubblewrap (default), the user nobody (root only), "
+        "auto: the first that starts",
+    )
+    grade.add_argument(
+        "--no-jail",
+        action="store_true",
+        help="run answers without a jail: only for submissions you trust",
     )
     grade.set_defaults(run=_cmd_grade)
 

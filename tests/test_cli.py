@@ -365,8 +365,8 @@ def test_issue9_grade_writes_the_reports_and_says_where(capsys, monkeypatch, tmp
 
     calls = []
 
-    def grade_submissions(folder, key, *, jobs=1, exercises=None, progress=True):
-        calls.append((folder, key, jobs, progress))
+    def grade_submissions(folder, key, *, jobs=1, exercises=None, progress=True, **options):
+        calls.append((folder, key, jobs, progress, options))
         return [
             StudentGrade("ann", "ann.ipynb", [span_rule_grade("ann", "floor_for_ceil")]),
             StudentGrade("a/b", "a/b.ipynb", [span_rule_grade("a/b", "floor_for_ceil")]),
@@ -381,13 +381,18 @@ def test_issue9_grade_writes_the_reports_and_says_where(capsys, monkeypatch, tmp
     argv = ["grade", str(tmp_path / "subs"), "--key", "k.toml", "-o", str(out), "--jobs", "2"]
     assert main(argv) == 0
     printed = capsys.readouterr().out
-    assert calls == [(str(tmp_path / "subs"), key, 2, True)]
+    options = {"shard": None, "jail": "bwrap"}
+    assert calls == [(str(tmp_path / "subs"), "k.toml", 2, True, options)]
     assert f"{out / 'grades.csv'}: 2 rows" in printed
     assert "student 'a/b': folder 'a_b' (sanitized)" in printed
     assert printed.rstrip().splitlines()[-1].startswith("2 students: mean ")
     assert (out / "a_b" / "results.json").exists() and (out / "ann" / "feedback.html").exists()
     assert (out / "summary.html").exists()
     assert "2 of 2: floor_for_ceil" in (out / "summary.txt").read_text()
+    argv += ["--shard", "2/3", "--no-jail"]
+    assert main(argv) == 0
+    assert calls[-1][-1] == {"shard": (2, 3), "jail": "none"}
+    assert "part 2 of 3: join the parts with `grade merge`" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("inside", ["", "graded"])
@@ -474,7 +479,7 @@ def test_issue9_bench_grading_grades_a_synthetic_class_with_each_jobs(capsys, mo
     catalog = {e.id: e for e in exercises()}
     seen_jobs = []
 
-    def grade_submissions(folder, key, *, jobs=1, exercises=None, progress=True):
+    def grade_submissions(folder, key, *, jobs=1, exercises=None, progress=True, jail="bwrap"):
         """Grade by the answers' sources: the solution scores its points, anything else 0."""
         seen_jobs.append(jobs)
         grades = []
@@ -567,3 +572,30 @@ def test_the_complex_surface_is_coloured_by_phase_with_a_marker_entry(tmp_path, 
     assert len(lit) > 1000 and (lit.min(axis=1) < 0.01).all()  # one primary is always off
     assert main(["surface", "gaussian", "--marker", "3"]) == 2
     assert "--marker and --ring-steps apply to three_poles only" in capsys.readouterr().err
+
+
+def test_grade_in_shards_then_merge_is_one_grading(capsys, tmp_path):
+    import nbformat
+    from nbformat import v4
+
+    from scanviz.exercises.catalog import get
+    from scanviz.exercises.key import new_key, write_key
+
+    exercise = get("span_rule")
+    class_dir = tmp_path / "class"
+    class_dir.mkdir()
+    for k, name in enumerate(("ann", "ben", "cat", "dan")):
+        body = exercise.solution if k % 2 else exercise.variants[0].source
+        cell = v4.new_code_cell(f"# scanviz: answer span_rule\n{body}")
+        nbformat.write(v4.new_notebook(cells=[cell]), class_dir / f"{name}.ipynb")
+    write_key(new_key(["span_rule"]), tmp_path / "key.toml")
+    grade = ["grade", str(class_dir), "--key", str(tmp_path / "key.toml")]
+    assert main([*grade, "-o", str(tmp_path / "whole")]) == 0
+    for part in (1, 2):
+        assert main([*grade, "-o", str(tmp_path / f"part{part}"), "--shard", f"{part}/2"]) == 0
+    merged = tmp_path / "merged"
+    parts = [str(tmp_path / "part1"), str(tmp_path / "part2")]
+    assert main(["grade", "merge", *parts, "-o", str(merged)]) == 0
+    assert "2 parts joined, 4 students, 4 rows" in capsys.readouterr().out
+    for name in ("grades.csv", "summary.txt"):
+        assert (merged / name).read_text() == (tmp_path / "whole" / name).read_text()

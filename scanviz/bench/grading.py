@@ -5,7 +5,10 @@ e with the catalog's solution or one of its known-wrong variants, option
 ``k % (1 + len(e.variants))`` (so student 0 is all correct), each in an
 answer cell whose first line is the marker ``# scanviz: answer <id>``. The
 class is graded with a fresh course key (random secret, default hidden
-cases and limits), once with each number of jobs; the grades must agree.
+cases and limits), every answer in the jail (bubblewrap; unjailed where it
+cannot start, and the table says so), once with each number of jobs
+(judging processes); the grades must agree. ``speedup`` is one job's time
+over this one's.
 """
 
 from __future__ import annotations
@@ -48,32 +51,35 @@ def _table(grades) -> list[tuple]:
     return [(s.student, g.exercise, round(g.score, 9), g.status) for s in grades for g in s.grades]
 
 
-def run_grading(*, quick: bool = False) -> list[dict]:
+def run_grading(*, quick: bool = False, students: int | None = None) -> list[dict]:
     """Grade a synthetic class with each of `JOBS`; print and return the rates."""
     from ..exercises.grading import grade_submissions
+    from ..exercises.jail import launch
     from ..exercises.key import new_key
 
-    students = 2 if quick else STUDENTS
+    students = students or (2 if quick else STUDENTS)
+    jail = "bwrap" if launch.unavailable("bwrap") is None else "none"
     catalog = exercises()[:QUICK_EXERCISES] if quick else exercises()
     key = new_key([e.id for e in catalog])
     rows, tables = [], []
     cases = sum(len(e.public) + key.exercises[e.id].hidden_cases for e in catalog)
     print(
         f"grading: {students} synthetic students x {len(catalog)} exercises (solutions and "
-        f"known-wrong variants), {cases} public and hidden cases per student, a fresh course key"
+        f"known-wrong variants), {cases} public and hidden cases per student, a fresh course key, "
+        f"answers run {'in bubblewrap' if jail == 'bwrap' else 'unjailed (no bubblewrap here)'}"
     )
-    print(f"{'jobs':>4}{'seconds':>10}{'students/min':>14}{'s/student':>11}")
+    print(f"{'jobs':>4}{'seconds':>10}{'students/min':>14}{'s/student':>11}{'speedup':>9}")
     with tempfile.TemporaryDirectory(prefix="scanviz-bench-grading-") as folder:
         synthetic_class(Path(folder), students)
         for jobs in JOBS:
             started = time.perf_counter()
-            grades = grade_submissions(folder, key, jobs=jobs, progress=False)
+            grades = grade_submissions(folder, key, jobs=jobs, progress=False, jail=jail)
             seconds = time.perf_counter() - started
             tables.append(_table(grades))
             rows.append({"jobs": jobs, "seconds": seconds, "per_minute": 60 * students / seconds})
             print(
                 f"{jobs:>4}{seconds:>10.1f}{60 * students / seconds:>14.1f}"
-                f"{seconds / students:>11.2f}"
+                f"{seconds / students:>11.2f}{rows[0]['seconds'] / seconds:>9.2f}"
             )
     first = next(s for s in grades if "student-00" in s.student)
     print(

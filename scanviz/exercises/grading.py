@@ -126,7 +126,7 @@ class Grader:
     def grade(self, student: str, path: Path) -> StudentGrade:
         """One submission's grades, timed; nothing the submission holds or does raises."""
         started = time.perf_counter()
-        grade = StudentGrade(student, str(path))
+        grade = StudentGrade(student, path.name)
         answers, problem = _read_answers(path)
         if answers is None:
             grade.grades = [

@@ -48,7 +48,11 @@ def _intro(exercise: Exercise) -> str:
 _HOW = (
     "## Your answer\n\n"
     "Keep the first line of the next cell exactly as it is: it tells the grader where your "
-    "answer is (you may move or copy the cell; keep one). Run it, then run the check below."
+    "answer is (you may move the cell; if several cells start with it, the last one is "
+    "graded). **Only this cell is graded, and it runs alone**, in a fresh Python with the "
+    "standard library, numpy and `scanviz.trace.events`: import what it uses in the cell "
+    "itself (nothing else of scanviz is there). Run it, then run the check below, which runs "
+    "it exactly that way."
 )
 
 _CHECK = (

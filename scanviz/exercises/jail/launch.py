@@ -54,7 +54,7 @@ _PACKAGE = _HERE.parent.parent  # scanviz/
 _RUNTIME_SCANVIZ = '"""scanviz inside the jail: only `scanviz.trace.events` is here."""\n'
 
 
-class JailUnavailable(RuntimeError):
+class JailUnavailable(OSError):
     """The jail cannot start on this machine; the message says why and what to do."""
 
 
