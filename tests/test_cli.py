@@ -257,7 +257,7 @@ def span_rule_grade(student, variant):
     for case in exercise.public:
         yours = core.run_case(exercise, function, case)
         reference = core.reference_outcome(exercise, case)
-        variants = core.variant_outcomes(exercise, case)
+        variants = core.VariantRuns(exercise, case, reference)
         verdicts.append(verdict.judge(exercise, case, yours, reference, variants=variants))
     points = core.score(exercise, verdicts)
     return ExerciseGrade(student, "span_rule", points, 4, "failed", "", verdicts)

@@ -133,8 +133,9 @@ class Outcome:
 
     ``calls`` holds the student's output at each forced call (step exercises);
     ``arguments`` (the reference's outcome only) the arguments of each call.
-    Every value is as the plain form reads back (`normalized`), so a local
-    answer's outcome and a jailed one's compare alike.
+    The outputs are as their plain form reads back (`normalized`), so a local
+    answer's outcome and a jailed one's compare alike; the events, result and
+    raster come from the grader's own algorithm either way.
     """
 
     trace: list = field(default_factory=list)
@@ -201,14 +202,8 @@ def run_case(
         outcome.raster = exercise.raster(returned) if exercise.raster else None
     if exercise.kind == "step":
         outcome.calls, outcome.arguments = _forced_calls(exercise, answer, case)
-    return Outcome(
-        normalized(outcome.trace),
-        normalized(outcome.calls),
-        normalized(outcome.result),
-        normalized(outcome.raster),
-        outcome.error,
-        outcome.arguments,
-    )
+    outcome.calls = normalized(outcome.calls)  # a jailed answer's and a local one's alike
+    return outcome
 
 
 def error_text(error: BaseException) -> str:
@@ -226,13 +221,13 @@ def error_text(error: BaseException) -> str:
 
 
 def _forced_calls(exercise: Exercise, answer: Callable, case: Case) -> tuple[list, list]:
-    """The answer's output at every call of the step, each on the reference's own state.
+    """The answer's output at every call of the step, each on the reference's own state, and
+    (for the reference itself) the calls' arguments.
 
     The reference runs alone first and every call's arguments are copied;
     then the answer is called on each copy (a jailed answer in one batch).
     """
     reference = exercise.reference
-    output = exercise.output or (lambda args, kwargs, returned: returned)
     arguments: list[tuple[tuple, dict]] = []
 
     def forced(*args, **kwargs):
@@ -240,9 +235,16 @@ def _forced_calls(exercise: Exercise, answer: Callable, case: Case) -> tuple[lis
         return reference(*args, **kwargs)
 
     exercise.call(forced, dict(case.inputs), None)
-    replayed = copy.deepcopy(arguments)
+    keep = answer is reference  # the reference's arguments are kept (`replayed_outputs`)
+    outputs = _outputs(exercise, answer, copy.deepcopy(arguments) if keep else arguments)
+    return outputs, arguments if keep else []
+
+
+def _outputs(exercise: Exercise, answer: Callable, arguments: list) -> list:
+    """What `answer` produced at each call (`Exercise.output`); the arguments take its changes."""
+    output = exercise.output or (lambda args, kwargs, returned: returned)
     outputs = []
-    for (args, kwargs), (ok, returned) in zip(replayed, call_each(answer, replayed), strict=True):
+    for (args, kwargs), (ok, returned) in zip(arguments, call_each(answer, arguments), strict=True):
         if not ok:
             outputs.append(Opaque(f"raised {returned}"))
             continue
@@ -250,7 +252,7 @@ def _forced_calls(exercise: Exercise, answer: Callable, case: Case) -> tuple[lis
             outputs.append(output(args, kwargs, returned))
         except Exception as error:  # what it returned does not fit the step's output
             outputs.append(Opaque(f"returned something unusable: {error_text(error)}"))
-    return outputs, arguments
+    return outputs
 
 
 def call_each(answer: Callable, calls: list[tuple[tuple, dict]]) -> list[tuple[bool, object]]:
@@ -293,14 +295,34 @@ def compile_answer(source: str, name: str, filename: str = "<answer>") -> Callab
     return namespace[name]
 
 
-def variant_outcomes(exercise: Exercise, case: Case) -> dict[str, Outcome]:
-    """Every known-wrong variant's outcome of `case` (run in the grader: the catalog's own code)."""
-    return {
-        v.name: run_case(
-            exercise, compile_answer(v.source, exercise.answer, f"<answer {v.name}>"), case
-        )
-        for v in exercise.variants
-    }
+class VariantRuns:
+    """The known-wrong variants' runs of one case, each computed only when asked, then kept.
+
+    `forced` is a variant's output at every forced call, replayed on the
+    reference's arguments (cheap: the algorithm does not run), `run` its
+    whole outcome; `scanviz.exercises.verdict.judge` runs a variant only if
+    its forced outputs are the student's.
+    """
+
+    def __init__(self, exercise: Exercise, case: Case, reference: Outcome) -> None:
+        self.exercise, self.case, self.reference = exercise, case, reference
+        self._functions = {
+            v.name: compile_answer(v.source, exercise.answer, f"<answer {v.name}>")
+            for v in exercise.variants
+        }
+        self._forced: dict[str, list] = {}
+        self._runs: dict[str, Outcome] = {}
+
+    def forced(self, name: str) -> list:
+        if name not in self._forced:
+            function = self._functions[name]
+            self._forced[name] = replayed_outputs(self.exercise, function, self.reference)
+        return self._forced[name]
+
+    def run(self, name: str) -> Outcome:
+        if name not in self._runs:
+            self._runs[name] = run_case(self.exercise, self._functions[name], self.case)
+        return self._runs[name]
 
 
 # --- answers that do nothing ------------------------------------------------------------------
@@ -344,6 +366,12 @@ def _do_nothing(exercise: Exercise) -> dict[str, Callable]:
     return _DO_NOTHING[exercise.id]
 
 
+def replayed_outputs(exercise: Exercise, function: Callable, reference: Outcome) -> list:
+    """`function`'s output at every forced call of the reference's run (a step exercise), each
+    on a copy of the reference's arguments, as `run_case` records them."""
+    return normalized(_outputs(exercise, function, copy.deepcopy(reference.arguments)))
+
+
 def catches_doing_nothing(exercise: Exercise, case: Case, reference: Outcome) -> bool:
     """Whether every do-nothing answer fails `case`.
 
@@ -357,18 +385,13 @@ def catches_doing_nothing(exercise: Exercise, case: Case, reference: Outcome) ->
         return bool(reference.trace)
     from .compare import first_difference
 
-    for function in _do_nothing(exercise).values():
-        results = call_each(function, copy.deepcopy(reference.arguments))
-        output = exercise.output or (lambda args, kwargs, returned: returned)
-        outputs = []
-        for (args, kwargs), (ok, returned) in zip(reference.arguments, results, strict=True):
-            try:
-                outputs.append(output(args, kwargs, returned) if ok else Opaque(returned))
-            except Exception as error:
-                outputs.append(Opaque(error_text(error)))
-        if first_difference(normalized(outputs), reference.calls, exercise.rtol) is None:
-            return False
-    return True
+    return all(
+        first_difference(
+            replayed_outputs(exercise, function, reference), reference.calls, exercise.rtol
+        )
+        is not None
+        for function in _do_nothing(exercise).values()
+    )
 
 
 # --- hidden and practice cases ------------------------------------------------------------------

@@ -113,6 +113,7 @@ class Grader:
         self.plan = plan
         self.exercises = [get(e) for e in plan.exercises]
         self.references = References()
+        self._hidden: dict[tuple[str, str], list[Case]] = {}
 
     def cases(self, exercise: Exercise, student: str) -> list[tuple[Case, bool]]:
         """(case, hidden) of `exercise` for `student`: the public cases, then the hidden ones."""
@@ -121,7 +122,9 @@ class Grader:
         if not count:
             return public
         who = student if self.plan.per_student else ""
-        return public + [(c, True) for c in hidden_cases(exercise, self.plan.secret, count, who)]
+        if (exercise.id, who) not in self._hidden:  # drawn once for a class (without per_student)
+            self._hidden[exercise.id, who] = hidden_cases(exercise, self.plan.secret, count, who)
+        return public + [(c, True) for c in self._hidden[exercise.id, who]]
 
     def grade(self, student: str, path: Path) -> StudentGrade:
         """One submission's grades, timed; nothing the submission holds or does raises."""

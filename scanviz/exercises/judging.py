@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 
 from ..limits import wall_clock_limit
@@ -26,10 +25,10 @@ from .core import (
     Case,
     Exercise,
     Outcome,
+    VariantRuns,
     event_limit,
     reference_outcome,
     run_case,
-    variant_outcomes,
 )
 from .jail import JailStopped, LoadFailed, Session
 from .jail.wire import encode
@@ -70,11 +69,11 @@ class Judged:
 
 
 class References:
-    """The reference's and the variants' outcomes of each case, computed once."""
+    """The reference's outcome and the variants' runs of each case, computed once per process."""
 
     def __init__(self) -> None:
         self._references: dict[tuple[str, str], Outcome] = {}
-        self._variants: dict[tuple[str, str], dict[str, Outcome]] = {}
+        self._variants: dict[tuple[str, str], VariantRuns] = {}
 
     @staticmethod
     def _key(exercise: Exercise, case: Case) -> tuple[str, str]:
@@ -86,30 +85,11 @@ class References:
             self._references[key] = reference_outcome(exercise, case)
         return self._references[key]
 
-    def variants(self, exercise: Exercise, case: Case) -> Mapping[str, Outcome]:
-        return _LazyVariants(self, exercise, case)
-
-    def _variant_outcomes(self, exercise: Exercise, case: Case) -> dict[str, Outcome]:
+    def variants(self, exercise: Exercise, case: Case) -> VariantRuns:
         key = self._key(exercise, case)
         if key not in self._variants:
-            self._variants[key] = variant_outcomes(exercise, case)
+            self._variants[key] = VariantRuns(exercise, case, self.reference(exercise, case))
         return self._variants[key]
-
-
-class _LazyVariants(Mapping):
-    """A case's variant outcomes, computed only if `judge` reads them (a passed case never does)."""
-
-    def __init__(self, cache: References, exercise: Exercise, case: Case) -> None:
-        self.cache, self.exercise, self.case = cache, exercise, case
-
-    def __len__(self) -> int:
-        return len(self.exercise.variants)
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self.cache._variant_outcomes(self.exercise, self.case))
-
-    def __getitem__(self, name: str) -> Outcome:
-        return self.cache._variant_outcomes(self.exercise, self.case)[name]
 
 
 def judge_answer(

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import builtins
 import re
-from collections.abc import Mapping
 from dataclasses import dataclass
 
 from .compare import (
@@ -24,7 +23,7 @@ from .compare import (
     trace_difference,
     traces_equal,
 )
-from .core import Case, Exercise, Outcome, Variant
+from .core import Case, Exercise, Outcome, Variant, VariantRuns
 from .jail.wire import Opaque
 
 NO_MATCH = "no known mistake matches this run: what differs is shown above"
@@ -172,13 +171,13 @@ def judge(
     reference: Outcome,
     *,
     hidden: bool = False,
-    variants: Mapping[str, Outcome] | None = None,
+    variants: VariantRuns | None = None,
 ) -> Verdict:
     """Compare the student's outcome of `case` with the reference's.
 
-    `variants` maps variant names to their outcomes of the same case
-    (`scanviz.exercises.core.variant_outcomes`); a failed case names the one
-    whose run is the student's (`same_run`), if any. Linear in the traces.
+    With the known-wrong variants' runs of the case (`VariantRuns`), a failed
+    case names the variant whose run is the student's (`same_run`), if any.
+    Linear in the traces.
     """
     rtol = exercise.rtol
     trace = trace_difference(yours.trace, reference.trace, rtol)
@@ -198,12 +197,7 @@ def judge(
     passed = (
         yours.error is None and trace is None and not wrong and result is None and raster is None
     )
-    variant = None
-    if not passed and variants:
-        by_name = {v.name: v for v in exercise.variants}
-        variant = next(
-            (by_name[name] for name, run in variants.items() if same_run(yours, run, rtol)), None
-        )
+    variant = None if passed or variants is None else matching_variant(variants, yours)
     return Verdict(
         case,
         hidden,
@@ -216,8 +210,23 @@ def judge(
         result,
         raster,
         variant,
-        bool(variants) and not passed and variant is None,
+        bool(variants and exercise.variants) and not passed and variant is None,
     )
+
+
+def matching_variant(runs: VariantRuns, yours: Outcome) -> Variant | None:
+    """The known-wrong variant whose run of the case is `yours`; a step exercise's variant runs
+    only if its forced outputs, replayed, are already the student's."""
+    exercise, rtol = runs.exercise, runs.exercise.rtol
+    for variant in exercise.variants:
+        if (
+            exercise.kind == "step"
+            and first_difference(runs.forced(variant.name), yours.calls, rtol) is not None
+        ):
+            continue
+        if same_run(yours, runs.run(variant.name), rtol):
+            return variant
+    return None
 
 
 def same_run(a: Outcome, b: Outcome, rtol: float) -> bool:

@@ -1,10 +1,10 @@
 """Grading an answer in-process, as the grader does but without the sandbox (for the tests)."""
 
 from scanviz.exercises.core import (
+    VariantRuns,
     compile_answer,
     reference_outcome,
     run_case,
-    variant_outcomes,
 )
 from scanviz.exercises.verdict import judge
 
@@ -18,7 +18,9 @@ def grade(exercise, answer, cases, *, variants=True):
             case,
             run_case(exercise, function, case),
             reference_outcome(exercise, case),
-            variants=variant_outcomes(exercise, case) if variants else None,
+            variants=VariantRuns(exercise, case, reference_outcome(exercise, case))
+            if variants
+            else None,
         )
         for case in cases
     ]

@@ -18,12 +18,12 @@ import pytest
 from scanviz.exercises import judging, report
 from scanviz.exercises.catalog import get
 from scanviz.exercises.core import (
+    VariantRuns,
     compile_answer,
     hidden_cases,
     reference_outcome,
     run_case,
     score,
-    variant_outcomes,
 )
 from scanviz.exercises.key import new_key
 from scanviz.exercises.results import ExerciseGrade, StudentGrade
@@ -51,7 +51,13 @@ def judged(span_rule):
     cases = [(c, False) for c in span_rule.public]
     cases += [(c, True) for c in hidden_cases(span_rule, "report-test-secret", 3)]
     return [
-        (c, h, reference_outcome(span_rule, c), variant_outcomes(span_rule, c)) for c, h in cases
+        (
+            c,
+            h,
+            reference_outcome(span_rule, c),
+            VariantRuns(span_rule, c, reference_outcome(span_rule, c)),
+        )
+        for c, h in cases
     ]
 
 
@@ -251,14 +257,15 @@ def test_summary_line():
 
 def test_csv_cells_cannot_be_formulas(tmp_path):
     # Issue 22: a student id starting with '=' went into grades.csv as it was.
-    ids = ["=HYPERLINK(\"http://x\")", "+1", "-2", "@SUM(A1)", "ann"]
+    ids = ['=HYPERLINK("http://x")', "+1", "-2", "@SUM(A1)", "ann"]
     grades = [
-        StudentGrade(i, f"{i}.ipynb", [ExerciseGrade(i, "span_rule", 4.0, 4, "passed")]) for i in ids
+        StudentGrade(i, f"{i}.ipynb", [ExerciseGrade(i, "span_rule", 4.0, 4, "passed")])
+        for i in ids
     ]
     report.write_reports(grades, key_with("never"), tmp_path)
     with open(tmp_path / "grades.csv", newline="", encoding="utf-8") as file:
         cells = [row[0] for row in csv.reader(file)][1:]
-    assert cells == ["'=HYPERLINK(\"http://x\")", "'+1", "'-2", "'@SUM(A1)", "ann"]
+    assert cells == ['\'=HYPERLINK("http://x")', "'+1", "'-2", "'@SUM(A1)", "ann"]
 
 
 def test_what_the_public_cases_printed_is_in_the_feedback_escaped(written):

@@ -214,7 +214,7 @@ class Session:
             self._buffer += chunk
         line, self._buffer = self._buffer.split(b"\n", 1)
         try:
-            return json.loads(line)
+            return json.loads(line, parse_constant=_not_json)
         except (ValueError, RecursionError):
             self._broken(f"a line that is not JSON ({_short(line)})")
 
@@ -418,6 +418,10 @@ def _changed(changed: object) -> dict[int, object]:
         return {int(k): v for k, v in changed.items()}
     except ValueError:
         raise wire.WireError("'changed' must be keyed by argument ids") from None
+
+
+def _not_json(name: str) -> None:
+    raise ValueError(f"{name} is not JSON")
 
 
 def _children_cpu() -> float:

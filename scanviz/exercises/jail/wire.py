@@ -284,7 +284,7 @@ class Decoder:
             KeyError,
             IndexError,
             AttributeError,
-            ZeroDivisionError,
+            ArithmeticError,
         ) as error:
             raise WireError(f"{type(error).__name__}: {error}") from None
         except RecursionError:
