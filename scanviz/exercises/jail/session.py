@@ -30,7 +30,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ...trace.events import Event
-from ...trace.recorder import Tracer
+from ...trace.recorder import Recorder
 from . import launch, wire
 
 STARTUP_SECONDS = 60.0  # the runner starts in well under a second; a loaded machine is slow
@@ -320,7 +320,7 @@ class RemoteAnswer:
         self.session = session
 
     def __call__(self, *args, **kwargs):
-        tracer = next((a for a in args if isinstance(a, Tracer)), None)
+        tracer = next((a for a in args if isinstance(a, Recorder)), None)
         call, encoder = _call_request(args, kwargs, tracer)
         reply = self.session.request({"call": call})
         ok, value = self._result(reply, encoder, tracer)

@@ -232,7 +232,9 @@ class Encoder:
     def _numpy(self, value: object, depth: int) -> object:
         numpy = _numpy()
         if isinstance(value, numpy.ndarray) and value.dtype.kind in ARRAY_KINDS:
-            flat = [self.encode(item, depth) for item in value.ravel().tolist()]
+            flat = value.ravel().tolist()
+            if value.dtype.kind == "f" and not numpy.isfinite(value).all():
+                flat = [_float(item) for item in flat]
             plain = {"$a": flat, "dtype": value.dtype.str, "shape": list(value.shape)}
             return self._identified(value, plain)
         if isinstance(value, numpy.generic) and value.dtype.kind in ARRAY_KINDS:
@@ -442,7 +444,15 @@ class Decoder:
             isinstance(n, int) and not isinstance(n, bool) and n >= 0 for n in shape
         ):
             raise WireError("an array's 'shape' must be a list of ints >= 0")
-        values, states = self._items(data["$a"], depth)
+        flat = data["$a"]
+        if not isinstance(flat, list):
+            raise WireError("'$a' must be a list")
+        if all(type(v) in _EXACT or (type(v) is float and math.isfinite(v)) for v in flat):
+            self.nodes += len(flat)
+            self._count(depth)
+            values, states = flat, flat
+        else:
+            values, states = self._items(flat, depth)
         if math.prod(shape) != len(values):
             raise WireError(f"an array of shape {tuple(shape)} needs {math.prod(shape)} values")
         if not all(type(v) in (bool, int, float) for v in values):
@@ -484,6 +494,9 @@ class Decoder:
         if not isinstance(data["$l"], list):
             raise WireError("'$l' must be a list")
         return self._list(data["$l"], depth, data)
+
+
+_EXACT = (bool, int)  # with finite floats, what an array's fast path takes as it is
 
 
 def _check_int(value: int) -> None:
