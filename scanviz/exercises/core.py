@@ -187,19 +187,20 @@ def run_case(
     """
     outcome = Outcome()
     recorder = CappedRecorder(exercise.kinds, limit)
-    returned = None
     try:
         returned = exercise.call(answer, dict(case.inputs), recorder)
+        # what a loop returned is the student's: reading it may fail too
+        outcome.result = exercise.result(returned) if exercise.result else None
+        outcome.raster = exercise.raster(returned) if exercise.raster else None
     except AnswerRaised as raised:
         outcome.error = raised.text
     except TraceOverflow as overflow:
         outcome.error = f"TooManyEvents: {overflow}"
     except Exception as error:  # a local answer's error, or the algorithm's on what it returned
         outcome.error = error_text(error)
+    if outcome.error is not None:
+        outcome.result = outcome.raster = None
     outcome.trace = list(recorder.trace())
-    if outcome.error is None:
-        outcome.result = exercise.result(returned) if exercise.result else None
-        outcome.raster = exercise.raster(returned) if exercise.raster else None
     if exercise.kind == "step":
         outcome.calls, outcome.arguments = _forced_calls(exercise, answer, case)
     outcome.calls = normalized(outcome.calls)  # a jailed answer's and a local one's alike

@@ -167,6 +167,10 @@ class Grader:
             )
         except JailStopped as stopped:  # the runner could not even start
             judged_status, message, runs, output = stopped.status, stopped.message, [], ""
+        except Exception as error:  # a bug of the grader's: one grade, never the batch
+            session.close()
+            judged_status, runs, output = "grader error", [], ""
+            message = f"the grader failed on this answer: {type(error).__name__}: {error}"
         else:
             judged_status, message, runs, output = (
                 judged.status,

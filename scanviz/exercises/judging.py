@@ -42,6 +42,7 @@ ZERO_STATUSES = (
     "too many events",
     "not allowed",
     "crashed",
+    "grader error",
 )
 
 

@@ -24,6 +24,7 @@ STATUSES = {
     "channel to the grader",
     "crashed": "the process running the answer died",
     "malformed notebook": "the notebook file is not a readable notebook",
+    "grader error": "the grader could not judge what the answer produced (a bug: please report it)",
 }
 """Every status an exercise grade can have, with what it means."""
 
