@@ -37,10 +37,13 @@ def grid_value(rng: random.Random, low: float, high: float, step: float = 0.25) 
     return round(rng.uniform(low, high) / step) * step
 
 
-def star(rng: random.Random, center: tuple[float, float], radius: float, points: int) -> list:
-    """A star polygon (self-intersecting when `points` is odd and >= 5), on quarter pixels."""
+def star(
+    rng: random.Random, center: tuple[float, float], radius: float, points: int, turn: int = 0
+) -> list:
+    """A star polygon {points/turn} on quarter pixels: each vertex `turn` points on from the last
+    (default 2 for an odd count, whose centre has winding 2; {7/3} has winding 3 there)."""
     cx, cy = center
-    turn = 2 if points % 2 else 1
+    turn = turn or (2 if points % 2 else 1)
     return [
         [
             round((cx + radius * math.cos(2 * math.pi * k * turn / points)) * 4) / 4,

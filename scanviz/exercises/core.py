@@ -123,6 +123,20 @@ class Exercise:
             raise ValueError(f"exercise {self.id!r}: the stub must define {self.answer!r}")
 
 
+def feature_tests(tests: Mapping[str, Callable[[Case, Outcome], bool]]) -> dict:
+    """An exercise's ``features`` and ``exercised`` from a test per feature.
+
+    Each test says whether a case has the feature, from the case's inputs and
+    the reference's outcome of it (events, forced calls and their arguments).
+    Use as ``Exercise(..., **feature_tests({...}))``.
+    """
+
+    def exercised(case: Case, reference: Outcome) -> set[str]:
+        return {name for name, test in tests.items() if test(case, reference)}
+
+    return {"features": tuple(tests), "exercised": exercised}
+
+
 def _defined(source: str) -> dict[str, ast.FunctionDef]:
     return {n.name: n for n in ast.parse(source).body if isinstance(n, ast.FunctionDef)}
 

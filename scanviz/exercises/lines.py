@@ -10,7 +10,7 @@ from .. import steps
 from ..raster.lines import midpoint_line, midpoint_step, octant
 from ..trace import Recorder
 from .catalog import register
-from .core import Case, Exercise, edited_variant
+from .core import Case, Exercise, edited_variant, feature_tests
 
 SIZE = 16  # lines of the hidden cases fit a SIZE x SIZE raster
 
@@ -56,12 +56,27 @@ def _pixel_of_call(index: int, trace: list) -> str:
     return f"call {index + 1}"
 
 
+_DIRECTIONS = {  # (major, minor) extents a feature's line is drawn along, per feature
+    "tie, minor step +1": ((2, 1), (4, 1), (4, 3), (6, 1), (6, 5)),
+    "tie, minor step -1": ((2, 1), (4, 1), (4, 3), (6, 1), (6, 5)),
+    "horizontal or vertical": ((1, 0), (2, 0), (3, 0), (5, 0)),
+    "45 degrees": ((1, 1),),
+}
+
+
 def _line_case(rng: random.Random, feature: str | None = None) -> Case:
-    """A line inside a SIZE x SIZE raster in any octant; a third run exactly through midpoints."""
+    """A line inside a SIZE x SIZE raster in any octant; a third run exactly through midpoints.
+
+    A `feature` of `LINE_FEATURES` picks the directions that can have it
+    (the feature test confirms the drawn line does).
+    """
+    directions = _DIRECTIONS.get(feature)
+    if directions is None and rng.random() < 1 / 3:  # (2m, m), (4m, m), (4m, 3m), ...: ties
+        directions = _DIRECTIONS["tie, minor step +1"]
     while True:
         x0, y0 = rng.randrange(SIZE), rng.randrange(SIZE)
-        if rng.random() < 1 / 3:  # a direction (2m, m), (4m, m), (4m, 3m), ...: ties happen
-            major, minor = rng.choice(((2, 1), (4, 1), (4, 3), (6, 1), (6, 5)))
+        if directions is not None:
+            major, minor = rng.choice(directions)
             scale = rng.randint(1, 3)
             dx, dy = major * scale, minor * scale
             if rng.random() < 0.5:
@@ -73,7 +88,43 @@ def _line_case(rng: random.Random, feature: str | None = None) -> Case:
         if 0 <= x1 < SIZE and 0 <= y1 < SIZE:
             break
     inputs = {"x0": x0, "y0": y0, "x1": x1, "y1": y1, "width": SIZE, "height": SIZE}
-    return Case(f"({x0}, {y0}) to ({x1}, {y1})", inputs, _category(x0, y0, x1, y1))
+    return Case(f"({x0}, {y0}) to ({x1}, {y1})", inputs, feature or _category(x0, y0, x1, y1))
+
+
+def _setup(reference) -> object:
+    return next(e for e in reference.trace if e.kind == "line_setup")
+
+
+def _ties(reference, tie_steps: bool) -> bool:
+    steps = [e for e in reference.trace if e.kind == "line_step" and e.choice != "last"]
+    return _setup(reference).tie_steps == tie_steps and any(e.d == 0 for e in steps)
+
+
+def _choice(choice: str):
+    return lambda case, reference: any(
+        e.kind == "line_step" and e.choice == choice for e in reference.trace
+    )
+
+
+def _extents(case) -> tuple[int, int]:
+    i = case.inputs
+    return abs(i["x1"] - i["x0"]), abs(i["y1"] - i["y0"])
+
+
+LINE_FEATURES = {
+    "diagonal step": _choice("diagonal"),
+    "axial step": _choice("axial"),
+    "tie, minor step +1": lambda case, reference: _ties(reference, False),
+    "tie, minor step -1": lambda case, reference: _ties(reference, True),
+    "steep": lambda case, reference: _setup(reference).major == "y",
+    "horizontal or vertical": lambda case, reference: (
+        min(_extents(case)) == 0 < max(_extents(case))
+    ),
+    "45 degrees": lambda case, reference: len(set(_extents(case))) == 1 and _extents(case)[0] > 0,
+}
+"""The features of the lines' hidden cases: each branch of the decision (diagonal, axial, a tie
+each way), a steep line, and lines along the grid: horizontal, vertical and 45 degrees, where d
+never changes sign or sits on a tie at every step."""
 
 
 def _category(x0: int, y0: int, x1: int, y1: int) -> str:
@@ -143,6 +194,7 @@ register(
         reference=midpoint_step,
         public=DECISION_CASES,
         generate=_line_case,
+        **feature_tests(LINE_FEATURES),
         variants=(
             edited_variant(
                 DECISION_SOLUTION,
@@ -289,6 +341,7 @@ register(
         reference=reference_line,
         public=LOOP_CASES,
         generate=_line_case,
+        **feature_tests(LINE_FEATURES),
         variants=(
             edited_variant(
                 LOOP_SOLUTION,
@@ -324,6 +377,15 @@ register(
                     "d_axial, d_diagonal = -2 * minor, 2 * (major - minor)",
                     "d_diagonal, d_axial = -2 * minor, 2 * (major - minor)",
                 ),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "strict_step_sign",
+                "the steps' signs are +1 only for x1 > x0 (y1 > y0): a horizontal or vertical "
+                "line, or one pixel, has step +1 along the axis it does not move on "
+                "(x1 >= x0, y1 >= y0)",
+                ("step_x = 1 if x1 >= x0 else -1", "step_x = 1 if x1 > x0 else -1"),
+                ("step_y = 1 if y1 >= y0 else -1", "step_y = 1 if y1 > y0 else -1"),
             ),
             edited_variant(
                 LOOP_SOLUTION,

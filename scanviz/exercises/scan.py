@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import functools
+import json
+import math
 import random
 from fractions import Fraction
 
@@ -11,9 +14,9 @@ from .. import steps
 from ..raster import scan_convert
 from ..raster.scanline import EdgeEntry, aet_update, edge_table_entry, span_rule
 from ..trace import Recorder
-from .cases import polygon
+from .cases import polygon, star
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 
 def _scan_with_span_rule(fn, inputs, tracer):
@@ -31,14 +34,125 @@ def _row_of_call(index: int, trace: list) -> str:
 
 
 def _span_case(rng: random.Random, feature: str | None = None) -> Case:
+    """A polygon, a raster and a rule; a `feature` of `SCAN_FEATURES` shapes them to have it."""
     width, height = rng.randint(6, 12), rng.randint(6, 12)
-    feature, vertices = polygon(rng, width, height)
+    shape, vertices = polygon(rng, width, height)
     rule = rng.choice(("nonzero", "evenodd"))
-    return Case(
-        f"{feature}, {rule}",
-        {"polygon": vertices, "width": width, "height": height, "rule": rule},
-        f"{feature}, {rule}",
+    center = (width / 2 + rng.uniform(-1, 1), height / 2 + rng.uniform(-1, 1))
+    radius = min(width, height) / 2 * rng.uniform(0.7, 0.95)
+    if feature == "winding 3 or more":
+        shape, vertices = "{7/3} star", star(rng, center, radius, 7, turn=3)
+    elif feature in ("overlap, nonzero", "overlap, evenodd", "empty run"):
+        shape, vertices = "star", star(rng, center, radius, rng.choice((5, 7)))
+    if feature in ("clockwise, nonzero", "overlap, nonzero", "winding 3 or more"):
+        rule = "nonzero"
+    elif feature == "overlap, evenodd":
+        rule = "evenodd"
+    if feature == "clockwise, nonzero" or (feature is None and rng.random() < 0.3):
+        vertices = vertices[::-1]
+    if feature == "below row 0":
+        shift = round(rng.uniform(0.2, 0.6) * height * 4) / 4
+        vertices = [[x, y - shift] for x, y in vertices]
+    elif feature == "crosses the raster border" or (feature is None and rng.random() < 0.2):
+        dx, dy = (
+            rng.choice((-1, 1)) * width * rng.uniform(0.3, 0.6),
+            rng.uniform(-0.6, 0.6) * height,
+        )
+        vertices = [[x + round(dx * 4) / 4, y + round(dy * 4) / 4] for x, y in vertices]
+    category = feature or f"{shape}, {rule}"
+    inputs = {"polygon": vertices, "width": width, "height": height, "rule": rule}
+    return Case(category, inputs, category)
+
+
+@functools.lru_cache(maxsize=1024)
+def _traced(key: str) -> tuple:
+    """Every event of the reference's scan conversion of a case (its inputs as JSON)."""
+    inputs = json.loads(key)
+    recorder = Recorder()
+    scan_convert(
+        inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=recorder
     )
+    return tuple(recorder.trace())
+
+
+def _events(case: Case, kind: str) -> list:
+    return [e for e in _traced(json.dumps(dict(case.inputs), sort_keys=True)) if e.kind == kind]
+
+
+def _intervals(case: Case) -> list[tuple[Fraction, Fraction, int]]:
+    """(x_in, x_out, winding) between consecutive crossings of every row's AET."""
+    runs = []
+    for row in _events(case, "aet_sorted"):
+        winding = 0
+        for left, right in zip(row.entries, row.entries[1:], strict=False):
+            winding += left.winding
+            runs.append((left.x_exact, right.x_exact, winding))
+    return runs
+
+
+def _inside(case: Case, winding: int) -> bool:
+    return winding % 2 == 1 if case.inputs["rule"] == "evenodd" else winding != 0
+
+
+def _edges(case: Case) -> list:
+    return [e for t in _events(case, "edge_table_built") for e in t.edges]
+
+
+def _crosses_border(case: Case, reference) -> bool:
+    width, height = case.inputs["width"], case.inputs["height"]
+    outside = any(not (0 <= x <= width and 0 <= y <= height) for x, y in case.inputs["polygon"])
+    return outside and bool(_events(case, "span"))
+
+
+def _rule(rule: str, test):
+    return lambda case, reference: case.inputs["rule"] == rule and test(case)
+
+
+SCAN_FEATURES = {
+    "crosses the raster border": _crosses_border,
+    "below row 0": lambda case, reference: (
+        min(y for _, y in case.inputs["polygon"]) < 0 and bool(_events(case, "span"))
+    ),
+    "winding 3 or more": lambda case, reference: any(
+        abs(w) >= 3 and _inside(case, w) for _, _, w in _intervals(case)
+    ),
+    "clockwise, nonzero": _rule("nonzero", lambda c: any(w < 0 for _, _, w in _intervals(c))),
+    "overlap, nonzero": _rule("nonzero", lambda c: any(abs(w) == 2 for _, _, w in _intervals(c))),
+    "overlap, evenodd": _rule("evenodd", lambda c: any(abs(w) == 2 for _, _, w in _intervals(c))),
+    "empty run": lambda case, reference: any(
+        _inside(case, w) and math.ceil(a) == math.ceil(b) for a, b, w in _intervals(case)
+    ),
+    "crossing on a sample": lambda case, reference: any(
+        e.x_exact.denominator == 1 for row in _events(case, "aet_sorted") for e in row.entries
+    ),
+    "horizontal edge": lambda case, reference: any(e.horizontal for e in _edges(case)),
+    "vertex between rows": lambda case, reference: any(
+        not e.horizontal and e.ymin % 1 for e in _edges(case)
+    ),
+    "edge ends on a row": lambda case, reference: any(
+        not e.horizontal and e.ymax % 1 == 0 and e.row_end > e.bucket for e in _edges(case)
+    ),
+    "edges cross": lambda case, reference: any(
+        row.swaps for row in _events(case, "aet_sorted")[1:]
+    ),
+    "equal x in the AET": lambda case, reference: any(
+        a.x_exact == b.x_exact
+        for row in _events(case, "aet_sorted")
+        for a, b in zip(row.entries, row.entries[1:], strict=False)
+    ),
+    "slope not a binary fraction": lambda case, reference: any(
+        e.dxdy_exact is not None and e.dxdy_exact.denominator & (e.dxdy_exact.denominator - 1)
+        for e in _edges(case)
+    ),
+}
+"""Tests of the scan exercises' features: the inputs that broke real students' code (a polygon
+crossing the raster border, winding 3), each branch of the span rule (the rules, negative
+windings, overlaps, empty runs), of the edge-table entry (horizontal edges, ends between and on
+rows) and of the AET update (crossing edges, ties, inexact slopes)."""
+
+
+def _scan_features(*names: str) -> dict:
+    return feature_tests({name: SCAN_FEATURES[name] for name in names})
 
 
 SPAN_RULE_SOLUTION = """\
@@ -77,13 +191,16 @@ register(
             "the row is inside when the count is nonzero (`nonzero` rule) or odd (`evenodd`).\n\n"
             "A sample at integer x belongs to the span when `x_in <= x < x_out`: the span is "
             "the half-open `[ceil(x_in), ceil(x_out))`, so two polygons sharing an edge never "
-            "both own a sample on it."
+            "both own a sample on it. A run between two crossings that holds no sample "
+            "(`ceil(x_in) == ceil(x_out)`) is not a span: leave it out."
         ),
         stub=(
             "def span_rule(crossings, rule):\n"
             '    """crossings: [(x, winding), ...] sorted by x (x is a Fraction); rule: "nonzero"'
             ' or "evenodd".\n'
-            '    Return [(x_start, x_end, winding), ...]: the inside runs, half-open, in order."""\n'
+            "    Return [(x_start, x_end, winding), ...]: the inside runs in order, half-open\n"
+            "    [ceil(x_in), ceil(x_out)), winding the count inside; a run holding no sample\n"
+            '    (x_start == x_end) is left out."""\n'
             "    raise NotImplementedError\n"
         ),
         solution=SPAN_RULE_SOLUTION,
@@ -121,8 +238,34 @@ register(
                     "rule": "nonzero",
                 },
             ),
+            Case(
+                "{7/3} star: winding 3 at the centre",
+                {
+                    "polygon": [
+                        [11.5, 6.0],
+                        [1.0, 8.5],
+                        [9.5, 1.75],
+                        [4.75, 11.25],
+                        [4.75, 0.75],
+                        [9.5, 10.25],
+                        [1.0, 3.5],
+                    ],
+                    "width": 12,
+                    "height": 12,
+                    "rule": "nonzero",
+                },
+            ),  # fmt: skip
         ),
         generate=_span_case,
+        **_scan_features(
+            "crosses the raster border",
+            "winding 3 or more",
+            "clockwise, nonzero",
+            "overlap, nonzero",
+            "overlap, evenodd",
+            "empty run",
+            "crossing on a sample",
+        ),
         variants=(
             _span_variant(
                 "floor_for_ceil",
@@ -155,6 +298,13 @@ register(
                 "winding 2 is inside",
                 'inside = winding % 2 == 1 if rule == "evenodd" else winding != 0',
                 "inside = winding % 2 == 1",
+            ),
+            _span_variant(
+                "winding_up_to_two",
+                "inside only for winding +-1 and +-2: under the nonzero rule every winding but 0 "
+                "is inside (a {7/3} star has winding 3 at its centre)",
+                "else winding != 0",
+                "else winding in (1, -1, 2, -2)",
             ),
             _span_variant(
                 "pairs_only",
@@ -207,6 +357,10 @@ BELOW = _case(
     [[0.5, -1.5], [2, 5.75], [6.5, 3], [5, -0.25]],
     8,
     7,
+)
+
+BESIDE = _case(
+    "crossing both sides of the raster", [[-2.5, 1.25], [9.75, 2.5], [4, 6.75]], 8, 7, "evenodd"
 )
 
 STEPPER = (
@@ -280,6 +434,12 @@ register(
         reference=edge_table_entry,
         public=(UMBC, OFF_GRID, PENTAGRAM, BELOW),
         generate=_span_case,
+        **_scan_features(
+            "crosses the raster border",
+            "horizontal edge",
+            "vertex between rows",
+            "edge ends on a row",
+        ),
         variants=(
             edited_variant(
                 ENTRY_SOLUTION,
@@ -400,6 +560,15 @@ register(
         reference=aet_update,
         public=(UMBC, PENTAGRAM, OFF_GRID, BELOW),
         generate=_span_case,
+        **_scan_features(
+            "crosses the raster border",
+            "winding 3 or more",
+            "edges cross",
+            "equal x in the AET",
+            "slope not a binary fraction",
+            "edge ends on a row",
+            "horizontal edge",
+        ),
         variants=(
             edited_variant(
                 AET_SOLUTION,
@@ -586,14 +755,46 @@ register(
         solution=LOOP_SOLUTION,
         call=_scan_loop,
         reference=reference_scan_loop,
-        public=(UMBC, OFF_GRID, PENTAGRAM, BELOW),
+        public=(UMBC, OFF_GRID, PENTAGRAM, BELOW, BESIDE),
         generate=_span_case,
+        **_scan_features(
+            "crosses the raster border",
+            "below row 0",
+            "winding 3 or more",
+            "clockwise, nonzero",
+            "overlap, evenodd",
+            "horizontal edge",
+            "crossing on a sample",
+            "edges cross",
+            "vertex between rows",
+            "edge ends on a row",
+        ),
         variants=(
             edited_variant(
                 LOOP_SOLUTION,
                 "closed_spans",
                 "closed spans [x_in, x_out]: a span is half-open, its end is ceil(x_out)",
                 ('min(math.ceil(right["x"]), width)', 'min(math.floor(right["x"]) + 1, width)'),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "spans_not_clipped",
+                "spans run past the raster's sides: clip each to [0, width) (a span starts at "
+                "max(ceil(x_in), 0) and ends at min(ceil(x_out), width))",
+                (
+                    'max(math.ceil(left["x"]), 0), min(math.ceil(right["x"]), width)',
+                    'math.ceil(left["x"]), math.ceil(right["x"])',
+                ),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "rows_below_the_raster",
+                "rows below the raster are scanned: an edge that starts below row 0 enters the "
+                "AET on row max(ceil(ymin), 0), with x where it crosses row 0",
+                (
+                    "bucket, row_end = max(math.ceil(yl), 0), math.ceil(yu)",
+                    "bucket, row_end = math.ceil(yl), math.ceil(yu)",
+                ),
             ),
             edited_variant(
                 LOOP_SOLUTION,
