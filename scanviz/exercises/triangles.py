@@ -9,7 +9,7 @@ import numpy as np
 from .. import steps
 from ..raster.edgefn import edge_function, owns_boundary, triangle_samples
 from .catalog import register
-from .core import Case, Exercise, edited_variant
+from .core import Case, Exercise, edited_variant, feature_tests
 
 SIZE = 12  # the raster of the hidden cases
 BITS = 2  # sub-pixel bits: a grid of 8 units per pixel keeps quarter-pixel inputs exact
@@ -105,16 +105,62 @@ def _triangles(rng: random.Random, feature: str) -> tuple[list, str]:
     )
 
 
+_SHAPES = {  # the shapes of `_triangles` a feature is drawn from (others: any)
+    "horizontal edge": "horizontal edges",
+    "vertical edge": "horizontal edges",
+    "shared edge": "shared edge",
+    "sample at pixel centers": "pixel centers",
+    "crosses the raster border": "quarter pixels",
+}
+
+
 def _triangles_case(rng: random.Random, feature: str | None = None) -> Case:
-    feature = rng.choice(FEATURES)
+    shape = _SHAPES.get(feature) or rng.choice(FEATURES)
     while True:
-        triangles, sample = _triangles(rng, feature)
+        triangles, sample = _triangles(rng, shape)
+        if feature == "vertical edge":  # the horizontal edges' shapes, mirrored on the diagonal
+            triangles = [[[y, x] for x, y in t] for t in triangles]
+        if feature == "crosses the raster border":
+            dx, dy = (rng.choice((-1, 1)) * SIZE * rng.uniform(0.3, 0.6) for _ in range(2))
+            triangles = [[[x + round(dx), y + round(dy)] for x, y in t] for t in triangles]
         if all(_area2(t) != 0 for t in triangles):
             break
     windings = {"counter-clockwise" if _area2(t) > 0 else "clockwise" for t in triangles}
-    category = f"{feature}, {' and '.join(sorted(windings))}"
+    category = feature or f"{shape}, {' and '.join(sorted(windings))}"
     inputs = {"triangles": triangles, "width": SIZE, "height": SIZE, "sample": sample}
     return Case(category, inputs, category)
+
+
+def _edges(case: Case) -> list:
+    return [(t[k], t[(k + 1) % 3]) for t in case.inputs["triangles"] for k in range(3)]
+
+
+def _covered(case: Case, reference) -> bool:
+    return reference.raster is not None and bool(np.asarray(reference.raster).any())
+
+
+def _shares_an_edge(case: Case) -> bool:
+    edges = [frozenset(map(tuple, e)) for e in _edges(case)]
+    return len(set(edges)) < len(edges)
+
+
+TRIANGLE_FEATURES = {
+    "counter-clockwise": lambda case, reference: any(
+        _area2(t) > 0 for t in case.inputs["triangles"]
+    ),
+    "clockwise": lambda case, reference: any(_area2(t) < 0 for t in case.inputs["triangles"]),
+    "horizontal edge": lambda case, reference: any(a[1] == b[1] for a, b in _edges(case)),
+    "vertical edge": lambda case, reference: any(a[0] == b[0] for a, b in _edges(case)),
+    "shared edge": lambda case, reference: _shares_an_edge(case) and _covered(case, reference),
+    "sample at pixel centers": lambda case, reference: case.inputs["sample"] == "center",
+    "crosses the raster border": lambda case, reference: (
+        _covered(case, reference)
+        and any(not 0 <= v <= SIZE for t in case.inputs["triangles"] for p in t for v in p)
+    ),
+}
+"""Tests of the triangle exercises' features: both orientations (the sign of the edge functions
+and of the ownership test), horizontal and vertical edges (where the ownership rule reads b, not
+a), an edge two triangles share (covered once), the other sampling, and the raster's border."""
 
 
 CONVENTIONS = (
@@ -198,6 +244,7 @@ register(
         reference=owns_boundary,
         public=OWNERSHIP_CASES,
         generate=_triangles_case,
+        **feature_tests(TRIANGLE_FEATURES),
         variants=(
             edited_variant(
                 OWNERSHIP_SOLUTION,
@@ -304,6 +351,7 @@ register(
         reference=edge_function,
         public=EDGE_CASES,
         generate=_triangles_case,
+        **feature_tests(TRIANGLE_FEATURES),
         variants=(
             edited_variant(
                 EDGE_SOLUTION,
