@@ -19,7 +19,7 @@ from ..scene.builtin import slide_scene
 from ..visibility.zbuffer import depth_test
 from .cases import grid_value, polygon
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 COLORS = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0))
 
@@ -54,15 +54,20 @@ def _depths(rng: random.Random, vertices: list, flat: bool) -> list:
     return [[x, y, min(max(z0 + dx * x + dy * y, 0.0), 15.0)] for x, y in vertices]
 
 
+CATEGORIES = ("flat, ties", "sloped, piercing", "mixed", "nearest first")
+NEAR = 2.0**-24  # "near-equal depths": apart by this, exact in binary, far below a pixel's step
+
+
 def _zbuffer_case(rng: random.Random, feature: str | None = None) -> Case:
+    """2-4 polygons; a `feature` of `ZBUFFER_FEATURES` shapes their depths (or place) to have it."""
     width, height = rng.randint(6, 12), rng.randint(6, 12)
-    category = rng.choice(("flat, ties", "sloped, piercing", "mixed", "nearest first"))
+    category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
+    if feature in ("tie", "empty sample"):
+        category = "flat, ties"
     shapes = [polygon(rng, width, height) for _ in range(rng.randint(2, 4))]
     polygons = []
     for k, (_, vertices) in enumerate(shapes):
-        flat = category == "flat, ties" or (category == "mixed" and k % 2 == 0)
-        if category == "nearest first":
-            flat = True
+        flat = category in ("flat, ties", "nearest first") or (category == "mixed" and k % 2 == 0)
         polygons.append(_depths(rng, vertices, flat and category != "sloped, piercing"))
     if category == "flat, ties":  # some polygons at exactly the same depth
         for later in polygons[1:]:
@@ -72,12 +77,45 @@ def _zbuffer_case(rng: random.Random, feature: str | None = None) -> Case:
     if category == "nearest first":  # the first polygon on the near plane, z = 0
         for vertex in polygons[0]:
             vertex[2] = 0.0
-    features = ", ".join(sorted({feature for feature, _ in shapes}))
+    if feature == "near-equal depths":  # flat, each a hair nearer than the one drawn before ...
+        z = grid_value(rng, 4, 8)
+        polygons = [[[x, y, z - k * NEAR] for x, y, _ in p] for k, p in enumerate(polygons)]
+        polygons[-1] = [[x, y, z + 1] for x, y, _ in polygons[-1]]  # ... but the last, behind
+    if feature == "crosses the raster border":
+        dx = rng.choice((-1, 1)) * round(width * rng.uniform(0.3, 0.6))
+        polygons = [[[x + dx, y, z] for x, y, z in p] for p in polygons]
+    shapes_seen = ", ".join(sorted({shape for shape, _ in shapes}))
     return Case(
-        f"{category}: {features}",
+        f"{feature or category}: {shapes_seen}",
         {"polygons": polygons, "width": width, "height": height},
-        category,
+        feature or category,
     )
+
+
+def _tests(reference) -> list[tuple[float, float | None]]:
+    """(z, stored) of every depth test the reference made."""
+    return [args for args, _ in reference.arguments]
+
+
+def _some_test(check):
+    return lambda case, reference: any(check(z, stored) for z, stored in _tests(reference))
+
+
+ZBUFFER_FEATURES = {
+    "empty sample": _some_test(lambda z, stored: stored is None),
+    "nearer fragment": _some_test(lambda z, stored: stored is not None and z < stored),
+    "farther fragment": _some_test(lambda z, stored: stored is not None and z > stored),
+    "tie": _some_test(lambda z, stored: z == stored),
+    "near-equal depths": _some_test(lambda z, stored: stored is not None and 0 < stored - z < 1e-6),
+    "nearest first": _some_test(lambda z, stored: stored == 0.0 and z > 0),
+    "crosses the raster border": lambda case, reference: (
+        any(not 0 <= v[0] <= case.inputs["width"] for p in case.inputs["polygons"] for v in p)
+        and bool(_tests(reference))
+    ),
+}
+"""Tests of the depth test's features: each of its branches (an empty sample, a nearer, a farther
+fragment, a tie), depths a hair apart (which a tolerance gets wrong), a stored depth of 0 (which
+`not stored` takes for empty), and polygons across the raster's side."""
 
 
 DEPTH_TEST_SOLUTION = """\
@@ -160,8 +198,26 @@ register(
                     "height": 8,
                 },
             ),
+            Case(
+                "a square a hair (2^-24) nearer than the one drawn before it, a third behind",
+                {
+                    "polygons": [
+                        [[1, 1, 6], [6, 1, 6], [6, 6, 6], [1, 6, 6]],
+                        [
+                            [3, 2, 6 - 2**-24],
+                            [8, 2, 6 - 2**-24],
+                            [8, 7, 6 - 2**-24],
+                            [3, 7, 6 - 2**-24],
+                        ],
+                        [[2, 4, 9], [7, 4, 9], [7, 7.5, 9], [2, 7.5, 9]],
+                    ],
+                    "width": 9,
+                    "height": 8,
+                },
+            ),
         ),
         generate=_zbuffer_case,
+        **feature_tests(ZBUFFER_FEATURES),
         variants=(
             _depth_variant(
                 "no_depth_test",
@@ -188,6 +244,13 @@ register(
                 "an empty sample (stored None, the buffer's +inf) takes any fragment: return True",
                 "    if stored is None:\n        return True\n",
                 "    if stored is None:\n        return False\n",
+            ),
+            _depth_variant(
+                "tolerance",
+                "a tolerance: a fragment nearer by less than it is still nearer (depths a hair "
+                "apart are two surfaces); compare z < stored exactly",
+                "return z < stored",
+                "return z < stored - 1e-6",
             ),
             _depth_variant(
                 "zero_depth_as_empty",
