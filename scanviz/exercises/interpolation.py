@@ -9,7 +9,7 @@ from .. import steps
 from ..raster.interpolate import span_step
 from ..visibility.zbuffer import ScreenPolygons, zbuffer
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 SIZE = 16  # the raster of the hidden cases
 
@@ -82,9 +82,13 @@ CATEGORIES = ("one polygon", "overlapping polygons", "wide spans", "perspective-
 
 
 def _interpolation_case(rng: random.Random, feature: str | None = None) -> Case:
-    category = rng.choice(CATEGORIES)
+    """One or two polygons; a `feature` of `INTERPOLATION_FEATURES` picks the kind that has it."""
+    category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
     count = 2 if category == "overlapping polygons" else 1
     polygons = [_polygon(rng, category == "wide spans") for _ in range(count)]
+    if feature == "crosses the raster border":
+        dx = rng.choice((-1, 1)) * round(SIZE * rng.uniform(0.3, 0.5))
+        polygons = [[[x + dx, y, z] for x, y, z in p] for p in polygons]
     colors = [[_color(rng) for _ in polygon] for polygon in polygons]
     inv_w = None
     if category == "perspective-correct":
@@ -96,7 +100,29 @@ def _interpolation_case(rng: random.Random, feature: str | None = None) -> Case:
         "width": SIZE,
         "height": SIZE,
     }
-    return Case(category, inputs, category)
+    return Case(feature or category, inputs, feature or category)
+
+
+def _steps(reference) -> list[tuple]:
+    return [args for args, _ in reference.arguments]
+
+
+INTERPOLATION_FEATURES = {
+    "wide spans": lambda case, reference: any(
+        e.x_end - e.x_start > SIZE // 2 for e in reference.trace if e.kind == "span_values"
+    ),
+    "overlapping polygons": lambda case, reference: len(case.inputs["polygons"]) > 1,
+    "perspective-correct": lambda case, reference: case.inputs["inv_w"] is not None,
+    "a rounding error carried": lambda case, reference: any(
+        carry != 0 for _, carry, *_ in _steps(reference)
+    ),
+    "crosses the raster border": lambda case, reference: (
+        bool(_steps(reference))
+        and any(not 0 <= v[0] <= SIZE for p in case.inputs["polygons"] for v in p)
+    ),
+}
+"""Tests of the span step's features: long spans (where an uncompensated sum drifts), a carry
+that is not 0, two polygons, 1/w channels, and polygons across the raster's side."""
 
 
 SOLUTION = """\
@@ -184,6 +210,7 @@ register(
             ),
         ),
         generate=_interpolation_case,
+        **feature_tests(INTERPOLATION_FEATURES),
         variants=(
             _variant(
                 "uncompensated",
