@@ -24,7 +24,7 @@ from ..transform.clip import CLIP_PLANES, clip_against_plane
 from ..transform.cull import back_face_test
 from ..transform.viewing import viewing_matrix
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 RTOL = 1e-9  # float steps: see the module docstring
 
@@ -93,10 +93,21 @@ def _face_of_call(index: int, trace: list) -> str:
     return f"face {faces[index]}" if index < len(faces) else f"call {index + 1}"
 
 
+CULL_CATEGORIES = (
+    "box, perspective",
+    "box, orthographic",
+    "eye in a face's plane",
+    "degenerate face",
+)
+HAIR = 2.0**-30  # how far off a face's plane "nearly edge-on" puts the eye
+
+
 def _cull_case(rng: random.Random, feature: str | None = None) -> Case:
-    category = rng.choice(
-        ("box, perspective", "box, orthographic", "eye in a face's plane", "degenerate face")
-    )
+    """A box seen by a camera; a `feature` of `CULL_FEATURES` places the eye (or adds a face)."""
+    category = feature if feature in CULL_CATEGORIES else rng.choice(CULL_CATEGORIES)
+    nearly = feature in ("nearly edge-on, toward the eye", "nearly edge-on, away")
+    if nearly:
+        category = "eye in a face's plane"
     positions = _box(rng, aligned=category != "box, perspective" or rng.random() < 0.3)
     faces = [list(f) for f in CUBE_FACES]
     eye = _eye(rng, 4, 9)
@@ -104,6 +115,10 @@ def _cull_case(rng: random.Random, feature: str | None = None) -> Case:
     if category == "eye in a face's plane":  # that face is seen exactly edge-on: V . N = 0
         axis, corner = rng.randrange(3), rng.randrange(8)
         eye[axis] = positions[corner][axis]
+        if nearly:  # a hair off the plane: outside the box (toward) or inside it (away)
+            outward = 1 if positions[corner][axis] >= sum(p[axis] for p in positions) / 8 else -1
+            toward = feature == "nearly edge-on, toward the eye"
+            eye[axis] += outward * HAIR * (1 if toward else -1)
     if category == "degenerate face":  # three collinear points: a zero normal
         a, b = positions[0], positions[7]
         positions = positions + [a, [(p + q) / 2 for p, q in zip(a, b, strict=True)], b]
@@ -112,7 +127,38 @@ def _cull_case(rng: random.Random, feature: str | None = None) -> Case:
     if abs(eye[0]) + abs(eye[2]) < 1e-3:  # looking straight down y: another up
         camera["up"] = [1.0, 0.0, 0.0]
     camera["projection"] = projection
-    return Case(category, {"camera": camera, "positions": positions, "faces": faces}, category)
+    label = feature or category
+    return Case(label, {"camera": camera, "positions": positions, "faces": faces}, label)
+
+
+def _dots(reference) -> list[tuple[float, bool]]:
+    """(V . N, whether N is zero) of every face the reference tested."""
+    return [
+        (sum(n * v for n, v in zip(normal, view, strict=True)), not any(normal))
+        for (normal, view), _ in reference.arguments
+    ]
+
+
+def _some_face(check):
+    return lambda case, reference: any(check(dot, zero) for dot, zero in _dots(reference))
+
+
+CULL_FEATURES = {
+    "faces the eye": _some_face(lambda dot, zero: dot < 0 and not zero),
+    "faces away": _some_face(lambda dot, zero: dot > 0 and not zero),
+    "edge-on": _some_face(lambda dot, zero: dot == 0 and not zero),
+    "nearly edge-on, toward the eye": _some_face(lambda dot, zero: -1e-6 < dot < 0),
+    "nearly edge-on, away": _some_face(lambda dot, zero: 0 < dot < 1e-6),
+    "zero normal": _some_face(lambda dot, zero: zero),
+    "box, orthographic": lambda case, reference: (
+        case.inputs["camera"].get("projection") == "orthographic"
+    ),
+    "box, perspective": lambda case, reference: (
+        case.inputs["camera"].get("projection", "perspective") == "perspective"
+    ),
+}
+"""Tests of the back-face test's features: each branch (toward, away, edge-on, a zero normal),
+faces a hair off edge-on on either side (which a tolerance gets wrong), and both projections."""
 
 
 BACK_FACE_SOLUTION = """\
@@ -191,6 +237,14 @@ register(
                 },
             ),
             Case(
+                "cube, eye a hair (2^-30) outside the plane of the +y face",
+                {
+                    "camera": {"eye": [4, 1 + 2**-30, 3], "look_at": [0, 0, 0], "up": [0, 1, 0]},
+                    "positions": CUBE,
+                    "faces": CUBE_FACES,
+                },
+            ),
+            Case(
                 "cube with a degenerate (collinear) face",
                 {
                     "camera": {"eye": [0.5, 2, 6], "look_at": [0, 0, 0], "up": [0, 1, 0]},
@@ -200,6 +254,7 @@ register(
             ),
         ),
         generate=_cull_case,
+        **feature_tests(CULL_FEATURES),
         variants=(
             _cull_variant(
                 "sign_flipped",
@@ -221,6 +276,20 @@ register(
                 "test V . N >= 0, not > 0",
                 "facing_away = dot >= 0",
                 "facing_away = dot > 0",
+            ),
+            _cull_variant(
+                "tolerance",
+                "a tolerance around 0: a face turned toward the eye by a hair is still seen; "
+                "cull when V . N >= 0, exactly",
+                "facing_away = dot >= 0",
+                "facing_away = dot >= -1e-6",
+            ),
+            _cull_variant(
+                "all_for_any",
+                "a normal is zero only when all three components are: has_area is any "
+                "component != 0, so an axis-aligned face (normal (0, 0, 1)) has area",
+                "has_area = normal[0] != 0 or normal[1] != 0 or normal[2] != 0",
+                "has_area = normal[0] != 0 and normal[1] != 0 and normal[2] != 0",
             ),
             _cull_variant(
                 "zero_normal_culled",
