@@ -344,8 +344,14 @@ def _plane_of_call(index: int, trace: list) -> str:
     return f"{CLIP_PLANES[plane]} plane {PLANE_EQUATIONS[plane]}"
 
 
+CLIP_CATEGORIES = ("triangle", "polygon", "vertex on a plane", "mostly outside")
+
+
 def _clip_case(rng: random.Random, feature: str | None = None) -> Case:
-    category = rng.choice(("triangle", "polygon", "vertex on a plane", "mostly outside"))
+    """A polygon in clip space; a `feature` of `CLIP_FEATURES` shapes it to have it."""
+    category = feature if feature in CLIP_CATEGORIES else rng.choice(CLIP_CATEGORIES)
+    if feature == "on the plane":
+        category = "vertex on a plane"
     count = 3 if category == "triangle" else rng.randint(4, 6)
     spread = 2.5 if category == "mostly outside" else 1.6
     center = [rng.uniform(-0.8, 0.8), rng.uniform(-0.8, 0.8)]
@@ -361,7 +367,35 @@ def _clip_case(rng: random.Random, feature: str | None = None) -> Case:
         vertex[axis] = (vertex[3], -vertex[3], 0.0)[axis]
         after[axis] = (1.5 * after[3], -1.5 * after[3], -0.5 * after[3])[axis]
     attributes = [[rng.uniform(0, 1) for _ in range(2)] for _ in polygon]
-    return Case(category, {"polygon": polygon, "attributes": attributes}, category)
+    label = feature or category
+    return Case(label, {"polygon": polygon, "attributes": attributes}, label)
+
+
+def _distances(reference) -> list[list[float]]:
+    """Each stage's signed distances of its vertices to its plane, in the reference's run."""
+    return [
+        [sum(a * b for a, b in zip(plane, v[:4], strict=True)) for v in vertices]
+        for (vertices, plane), _ in reference.arguments
+    ]
+
+
+def _some_edge(check):
+    """Whether an edge (S, P), S the previous vertex, of some stage passes `check(d_s, d_p)`."""
+    return lambda case, reference: any(
+        check(ds[k - 1], ds[k]) for ds in _distances(reference) for k in range(len(ds))
+    )
+
+
+CLIP_FEATURES = {
+    "entering edge": _some_edge(lambda d_s, d_p: d_s < 0 < d_p),
+    "leaving edge": _some_edge(lambda d_s, d_p: d_p < 0 < d_s),
+    "edge inside": _some_edge(lambda d_s, d_p: d_s > 0 and d_p > 0),
+    "on the plane": _some_edge(lambda d_s, d_p: d_p == 0),
+    "perspective (w not 1)": lambda case, reference: any(v[3] != 1 for v in case.inputs["polygon"]),
+}
+"""Tests of a clipping stage's features: each branch of an edge (entering, leaving, inside, a
+vertex exactly on the plane), and w other than 1 (a polygon wholly outside a plane is rejected
+before any stage runs)."""
 
 
 CLIP_SOLUTION = """\
@@ -414,7 +448,7 @@ register(
             "    plane: (a, b, c, d); a vertex's signed distance is a*x + b*y + c*z + d*w, and\n"
             "    the inside is distance >= 0.\n"
             "    Return the clipped polygon: a list of tuples of the same length, in order. For\n"
-            "    each edge (S, P), S the previous vertex (for the first vertex, the last one):\n"
+            "    each edge (S, P) in turn, starting with (the last vertex, the first vertex):\n"
             "    if S and P are strictly on opposite sides (one distance < 0, the other > 0),\n"
             "    the crossing (every component interpolated with the same t); then P if its\n"
             '    distance is >= 0."""\n'
@@ -452,6 +486,7 @@ register(
             ),
         ),
         generate=_clip_case,
+        **feature_tests(CLIP_FEATURES),
         variants=(
             _clip_variant(
                 "keeps_outside",
@@ -479,6 +514,16 @@ register(
                 "coordinates; yours copies them from S",
                 "clipped.append(tuple(a + t * (b - a) for a, b in zip(s, p)))",
                 "clipped.append(tuple(a + t * (b - a) for a, b in zip(s[:4], p[:4])) + s[4:])",
+            ),
+            edited_variant(
+                CLIP_SOLUTION,
+                "starts_one_later",
+                "your vertices are right but start one edge later: walk the edges from (the last "
+                "vertex, the first vertex), so the output starts with what that edge gives",
+                (
+                    "s = vertices[-1]\n    for p in vertices:",
+                    "s = vertices[0]\n    for p in vertices[1:] + vertices[:1]:",
+                ),
             ),
             _clip_variant(
                 "on_plane_twice",
