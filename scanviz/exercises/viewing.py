@@ -570,8 +570,12 @@ def _view_with(fn, inputs, tracer):
         )
 
 
+VIEW_CATEGORIES = ("perspective", "orthographic", "tilted up vector", "long up vector")
+
+
 def _view_case(rng: random.Random, feature: str | None = None) -> Case:
-    category = rng.choice(("perspective", "orthographic", "tilted up vector", "long up vector"))
+    """A rotated box and a camera; a `feature` of `VIEW_FEATURES` picks the camera that has it."""
+    category = feature if feature in VIEW_CATEGORIES else rng.choice(VIEW_CATEGORIES)
     eye = _eye(rng, 8, 12)  # the box is within 5.2 of the origin: every point has w > 1
     up = [0.0, 1.0, 0.0]
     if category == "tilted up vector":
@@ -594,6 +598,34 @@ def _view_case(rng: random.Random, feature: str | None = None) -> Case:
         },
         category,
     )
+
+
+def _camera_calls(reference) -> list[tuple]:
+    return [args for args, _ in reference.arguments]
+
+
+def _some_camera(check):
+    return lambda case, reference: any(check(*args) for args in _camera_calls(reference))
+
+
+def _backward(eye, look_at) -> list[float]:
+    return [e - a for e, a in zip(eye, look_at, strict=True)]
+
+
+VIEW_FEATURES = {
+    "perspective": lambda case, reference: case.inputs["camera"]["projection"] == "perspective",
+    "orthographic": lambda case, reference: case.inputs["camera"]["projection"] == "orthographic",
+    "tilted up vector": _some_camera(
+        lambda eye, look_at, up: (
+            abs(sum(u * b for u, b in zip(up, _backward(eye, look_at), strict=True))) > 1e-9
+        )
+    ),
+    "long up vector": _some_camera(
+        lambda eye, look_at, up: abs(math.sqrt(sum(u * u for u in up)) - 1) > 1e-9
+    ),
+}
+"""Tests of the viewing matrix's features: an up vector not perpendicular to the view (which must
+be made so) or not of unit length (which must not scale), and both projections."""
 
 
 VIEWING_SOLUTION = """\
@@ -689,6 +721,7 @@ register(
             ),
         ),
         generate=_view_case,
+        **feature_tests(VIEW_FEATURES),
         variants=(
             _view_variant(
                 "left_handed",
