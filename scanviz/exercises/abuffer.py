@@ -16,7 +16,7 @@ from .. import steps
 from ..abuffer import Fragments, resolve
 from ..abuffer.pixelstruct import insert_fragment, pack_pixel
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 LAYOUT = "4x4"
 FULL = 0xFFFF
@@ -120,9 +120,16 @@ def _half_plane_mask(rng: random.Random) -> int:
             return mask
 
 
+HAIR = 2.0**-30  # "near-equal depths": fragments this far apart, far nearer than a depth step
+
+
 def _depth(rng: random.Random, feature: str) -> tuple[float, float]:
-    """(zmin, zmax) on a grid of 1/8 (ties happen); only two depths for the "depth ties" cases."""
-    z = rng.choice((0.25, 0.5)) if feature == "depth ties" else rng.randint(0, 7) / 8
+    """(zmin, zmax) on a grid of 1/8 (ties happen); only two depths for the "depth ties" cases,
+    and two a hair apart for the "near-equal depths" ones."""
+    if feature == "near-equal depths":
+        z = rng.choice((0.5, 0.5 - HAIR))
+    else:
+        z = rng.choice((0.25, 0.5)) if feature == "depth ties" else rng.randint(0, 7) / 8
     return z, z + rng.randint(0, 3) / 8
 
 
@@ -177,6 +184,72 @@ def _generator(features: tuple[str, ...]):
         )
 
     return generate
+
+
+def _calls(reference) -> list[tuple]:
+    """The arguments of every call of the step in the reference's run."""
+    return [args for args, _ in reference.arguments]
+
+
+def _some_call(check):
+    return lambda case, reference: any(check(*args) for args in _calls(reference))
+
+
+def _some_output(check):
+    return lambda case, reference: any(check(output) for output in reference.calls)
+
+
+def _nearer_by(fragments, incoming, low: float, high: float) -> bool:
+    """Whether `incoming` is nearer than a stored fragment by low..high (0..0: a tie)."""
+    return any(low <= f.z - incoming.z <= high for f in fragments)
+
+
+INSERT_FEATURES = {
+    "layers": _some_call(lambda fragments, incoming, full: len(fragments) >= 2),
+    "one surface split": _some_output(lambda output: output[1] is not None),
+    "slivers": _some_call(
+        lambda fragments, incoming, full: incoming.mask == full > 0 and incoming.area < 1
+    ),
+    "transparency": _some_call(lambda fragments, incoming, full: incoming.opacity < 1),
+    "depth ties": _some_call(lambda f, incoming, full: _nearer_by(f, incoming, 0, 0)),
+    "near-equal depths": _some_call(
+        lambda f, incoming, full: _nearer_by(f, incoming, 2**-60, 1e-6)
+    ),
+    "discards behind": _some_output(lambda output: len(output[2]) > 0),
+}
+"""Tests of the insertion's features: each branch (a list, a surface's other part to combine, a
+full mask that is not complete, a transparent fragment, what a complete one hides), depths that
+tie and depths a hair apart (which a tolerance takes for a tie)."""
+
+
+def _fragments(reference) -> list[list]:
+    return [args[0] for args in _calls(reference)]
+
+
+PACK_FEATURES = {
+    "layers": lambda case, reference: any(len(f) >= 2 for f in _fragments(reference)),
+    "one surface split": lambda case, reference: any(
+        len({x.object for x in f}) < len(f) for f in _fragments(reference)
+    ),
+    "transparency": lambda case, reference: any(
+        x.opacity < 1 for f in _fragments(reference) for x in f
+    ),
+    "background shows": lambda case, reference: any(
+        args[1] & ~_union(args[0]) for args in _calls(reference)
+    ),
+    "depth ties": lambda case, reference: any(
+        len({x.z for x in f}) < len(f) for f in _fragments(reference)
+    ),
+}
+"""Tests of the packer's features: several fragments, one surface in two parts, a transparent
+fragment (the packer's second branch), samples no fragment covers, and fragments at one depth."""
+
+
+def _union(fragments) -> int:
+    mask = 0
+    for f in fragments:
+        mask |= f.mask
+    return mask
 
 
 def _variant(solution: str, name: str, hint: str, old: str, new: str) -> Variant:
@@ -311,6 +384,19 @@ INSERT_CASES = (
         ),
     ),
     Case(
+        "a fragment a hair (2^-30) nearer than the stored one",
+        case_inputs(
+            [
+                fragment(0, 0, LEFT, 0.5, RED, 0),
+                fragment(0, 0, BOTTOM, 0.5 - 2**-30, GREEN, 1),  # nearer: first in the list
+                fragment(1, 0, TOP, 0.25, BLUE, 2),
+                fragment(1, 0, RIGHT, 0.25 + 2**-30, YELLOW, 3),  # farther: after it
+            ],
+            2,
+            1,
+        ),
+    ),
+    Case(
         "near depth, far depth, ties",
         case_inputs(
             [
@@ -374,7 +460,15 @@ def insert_fragment(fragments, incoming, full):
         generate=_generator(
             ("layers", "one surface split", "slivers", "transparency", "depth ties")
         ),
+        **feature_tests(INSERT_FEATURES),
         variants=(
+            _insert_variant(
+                "depth_tolerance",
+                "a tolerance in the depth order: a fragment nearer by a hair is nearer; insert "
+                "after exactly the stored fragments whose z <= its z",
+                "fragments[position].z <= incoming.z",
+                "fragments[position].z <= incoming.z + 1e-6",
+            ),
             _insert_variant(
                 "sort_by_zmax",
                 "sorted by the far depth zmax: the list is kept sorted by the near depth z (zmin)",
@@ -561,6 +655,9 @@ register(
             "the pixel's coverage alpha is 1 - the background's share."
         ),
         stub='''\
+from scanviz.trace.events import PackStep
+
+
 def pack_pixel(fragments, full, samples, weights, background):
     """Pack one pixel's fragment list into (color, alpha, steps), front to back.
 
@@ -585,6 +682,7 @@ def pack_pixel(fragments, full, samples, weights, background):
         reference=pack_pixel,
         public=PACK_CASES,
         generate=_generator(("layers", "one surface split", "transparency", "depth ties")),
+        **feature_tests(PACK_FEATURES),
         variants=(
             _pack_variant(
                 "back_to_front",
