@@ -22,7 +22,7 @@ from ..visibility import ScreenPolygons, examples, solve
 from ..visibility.depth_sort import DepthSort, depth_order_test
 from .cases import plane_polygon
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 KINDS = ("pair_tested", "pieces_swapped", "polygon_split")
 REVERSED_TESTS = ("other_behind_plane", "s_in_front")
@@ -94,9 +94,27 @@ def _rotated_bars(rng: random.Random, size: int) -> list:
     ]
 
 
+CATEGORIES = ("sloped polygons", "touching rectangles", "cyclic bars", "mixed")
+HAIR = 2.0**-32  # "near-equal depths": in front of a plane by this, within the plane tolerance
+
+
+def _on_plane_of(rng: random.Random, polygon: list, width: int, height: int) -> list:
+    """Another polygon lying a hair in front of `polygon`'s plane (as its three first points
+    span it), overlapping it on the screen."""
+    (x0, y0, z0), (x1, y1, z1), (x2, y2, z2) = polygon[:3]
+    det = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+    dzdx = ((z1 - z0) * (y2 - y0) - (z2 - z0) * (y1 - y0)) / det
+    dzdy = ((x1 - x0) * (z2 - z0) - (x2 - x0) * (z1 - z0)) / det
+    other = plane_polygon(rng, width, height, depth=(0.5, 0.5), slope=0)
+    return [[x, y, z0 + dzdx * (x - x0) + dzdy * (y - y0) - HAIR] for x, y, _ in other]
+
+
 def _depth_sort_case(rng: random.Random, feature: str | None = None) -> Case:
+    """Screen polygons; a `feature` of `DEPTH_SORT_FEATURES` picks the kind that can have it."""
     width, height = rng.randint(10, 16), rng.randint(10, 16)
-    category = rng.choice(("sloped polygons", "touching rectangles", "cyclic bars", "mixed"))
+    category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
+    if feature == "extents touch":
+        category = "touching rectangles"
     if category == "cyclic bars":
         width = height = 24
         polygons = _rotated_bars(rng, 24)
@@ -109,11 +127,56 @@ def _depth_sort_case(rng: random.Random, feature: str | None = None) -> Case:
         ]
         if category == "mixed":
             polygons += _touching_rectangles(rng, width, height)
+    if feature == "near-equal depths":
+        polygons.append(_on_plane_of(rng, polygons[0], width, height))
+    label = feature or category
     return Case(
-        f"{category}: {len(polygons)} polygons",
+        f"{label}: {len(polygons)} polygons",
         {"polygons": polygons, "width": width, "height": height},
-        category,
+        label,
     )
+
+
+def _plane_at(plane, x, y):
+    x0, y0, z0, dzdx, dzdy = plane
+    return z0 + dzdx * (x - x0) + dzdy * (y - y0)
+
+
+def _touch(s, other) -> bool:
+    """Whether the extents of S and S' only touch on some axis."""
+    for axis in (0, 1):
+        s_low, s_high = min(v[axis] for v in s), max(v[axis] for v in s)
+        low, high = min(v[axis] for v in other), max(v[axis] for v in other)
+        if s_high == low or high == s_low:
+            return True
+    return False
+
+
+def _hair_from_plane(s, other, s_plane, other_plane, tolerance) -> bool:
+    """Whether a vertex of S lies in front of the plane of S', but within the tolerance."""
+    return any(-tolerance <= z - _plane_at(other_plane, x, y) < 0 for x, y, z in s)
+
+
+def _result(name):
+    return lambda case, reference: name in reference.calls
+
+
+DEPTH_SORT_FEATURES = {
+    **{
+        name: _result(name)
+        for name in ("x_extent", "y_extent", "s_behind_plane", "other_in_front", "no_overlap")
+    },
+    "no test passes": _result(None),
+    "extents touch": lambda case, reference: any(
+        _touch(args[0], args[1]) for args, _ in reference.arguments
+    ),
+    "near-equal depths": lambda case, reference: any(
+        _hair_from_plane(*args) for args, _ in reference.arguments
+    ),
+}
+"""Tests of the ambiguity tests' features: each result the step returns (each test passing
+first, and none), extents that only touch (apart, by ownership), and a vertex a hair in front
+of a plane, within the tolerance (on it, by the rule)."""
 
 
 DEPTH_ORDER_SOLUTION = """\
@@ -219,8 +282,15 @@ register(
         reference=depth_order_test,
         public=(
             Case(
-                "the UMBC slide: a sloped triangle piercing two flat polygons",
-                _inputs(examples.slides_zbuffer(), 10, 9),
+                "the UMBC slide: a sloped triangle piercing two flat polygons, a square beside",
+                {
+                    "polygons": [
+                        *_inputs(examples.slides_zbuffer(), 10, 9)["polygons"],
+                        [[11, 1, 4], [13, 1, 4], [13, 3, 6], [11, 3, 6]],
+                    ],
+                    "width": 14,
+                    "height": 9,
+                },
             ),
             Case(
                 "three bars in a cycle (the slides' cyclic overlap)",
@@ -247,6 +317,7 @@ register(
             ),
         ),
         generate=_depth_sort_case,
+        **feature_tests(DEPTH_SORT_FEATURES),
         variants=(
             _variant(
                 "extents_touching_overlap",
@@ -261,6 +332,15 @@ register(
                 (
                     "z - plane(other_plane, x, y) >= -tolerance",
                     "z - plane(other_plane, x, y) <= tolerance",
+                ),
+            ),
+            _variant(
+                "no_tolerance",
+                "a vertex within `tolerance` of the plane counts as on it (its depth was "
+                "rounded): S is behind when z - plane >= -tolerance, not >= 0",
+                (
+                    "z - plane(other_plane, x, y) >= -tolerance",
+                    "z - plane(other_plane, x, y) >= 0",
                 ),
             ),
             _variant(
