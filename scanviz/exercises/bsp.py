@@ -21,7 +21,7 @@ from ..visibility.bsp import BSP, ORDERS, ROOTS, display_order
 from ..visibility.examples import BSP_SEQUENCE, slides_bsp
 from .cases import plane_polygon
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 
 def case_polygons(inputs: dict) -> ScreenPolygons:
@@ -70,12 +70,15 @@ def _slides_case(order: str) -> dict:
 
 
 def _bsp_case(rng: random.Random, feature: str | None = None) -> Case:
+    """Screen polygons and a BSP; a `feature` of `BSP_FEATURES` picks the display order."""
     width, height = rng.randint(8, 16), rng.randint(8, 16)
     count = rng.randint(2, 6)
     polygons = [
         plane_polygon(rng, width, height, depth=(0.2, 0.8), slope=0.05) for _ in range(count)
     ]
     order, root = rng.choice(ORDERS), rng.choice(ROOTS)
+    if feature is not None:
+        order = "front_to_back" if feature.endswith("front to back") else "back_to_front"
     sequence = rng.sample(range(count), rng.randint(0, count))
     return Case(
         f"{count} polygons, {order.replace('_', ' ')}, root {root}",
@@ -89,6 +92,23 @@ def _bsp_case(rng: random.Random, feature: str | None = None) -> Case:
         },
         order.replace("_", " "),
     )
+
+
+def _visit(viewer_in_front: bool, front_to_back: bool):
+    return lambda case, reference: (
+        (viewer_in_front, front_to_back) in [tuple(args) for args, _ in reference.arguments]
+    )
+
+
+BSP_FEATURES = {
+    f"viewer {'in front' if front else 'behind'}, {'front to back' if forward else 'back to front'}": (
+        _visit(front, forward)
+    )
+    for front in (True, False)
+    for forward in (True, False)
+}
+"""Tests of the display order's features: each of its four branches (the viewer on either side
+of a node's plane, in either display direction)."""
 
 
 DISPLAY_ORDER_SOLUTION = """\
@@ -165,6 +185,7 @@ EXERCISE = register(
             ),
         ),
         generate=_bsp_case,
+        **feature_tests(BSP_FEATURES),
         variants=(
             _order_variant(
                 "always_back_first",
