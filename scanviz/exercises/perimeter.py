@@ -22,7 +22,7 @@ from .. import steps
 from ..surfaces import GridSurface, View, floating_perimeter
 from ..surfaces.perimeter import perimeter_merge, perimeter_test
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 KINDS = ("perimeter_edge", "perimeter_update")
 VIEWINGS = ("face-on", "edge-on", "corner-on", "parallel")
@@ -225,7 +225,8 @@ def _viewpoint(rng: random.Random, viewing: str, x: list, y: list, top: float) -
 
 
 def _perimeter_case(rng: random.Random, feature: str | None = None) -> Case:
-    viewing = rng.choice(VIEWINGS)
+    """A grid surface, a view and a raster; a viewing `feature` is that viewing."""
+    viewing = feature if feature in VIEWINGS else rng.choice(VIEWINGS)
     while True:  # a perspective view must have every grid point in front of it
         nx, ny = rng.randint(3, 6), rng.randint(3, 6)
         x, y = _axis(rng, nx), _axis(rng, ny)
@@ -251,6 +252,82 @@ def _perimeter_case(rng: random.Random, feature: str | None = None) -> Case:
         inputs,
         viewing,
     )
+
+
+def _viewing(name: str):
+    return lambda case, reference: _kind_of_view(case) == name
+
+
+def _kind_of_view(case: Case) -> str:
+    """The viewing of a case from its inputs: parallel, else by where the eye is (over the grid:
+    face-on; beside one side: edge-on; beside a corner: corner-on)."""
+    if case.inputs["projection"] == "parallel":
+        return "parallel"
+    x, y = case.inputs["x"], case.inputs["y"]
+    px, py, _ = case.inputs["point"]
+    beside = (not x[0] <= px <= x[-1]) + (not y[0] <= py <= y[-1])
+    return ("face-on", "edge-on", "corner-on")[beside]
+
+
+def _tests(reference) -> list[tuple]:
+    """(top, bottom, right, left, x, y) of every perimeter test the reference made."""
+    return [args for args, _ in reference.arguments]
+
+
+def _where(top, bottom, right, left, x, y) -> set[str]:
+    """How the perimeter test decides the point (x, y): by which of its two comparisons, and
+    whether the point is on the perimeter."""
+    in_column, in_row = bottom[x] < y < top[x], left[y] < x < right[y]
+    if not in_column:
+        ways = {"outside the column"}
+    else:
+        ways = {"hidden" if in_row else "in the column, not inside the row"}
+    on_column = y in (bottom[x], top[x]) and left[y] <= x <= right[y]
+    on_row = x in (left[y], right[y]) and bottom[x] <= y <= top[x]
+    return ways | ({"on the perimeter"} if on_column or on_row else set())
+
+
+TEST_FEATURES = {
+    where: lambda case, reference, where=where: any(
+        where in _where(*args) for args in _tests(reference)
+    )
+    for where in (
+        "hidden",
+        "outside the column",
+        "in the column, not inside the row",
+        "on the perimeter",
+    )
+}
+"""Tests of the perimeter test's features: each way a point is decided (hidden strictly inside,
+outside its column, inside the column but not strictly inside its row), and a point on the
+perimeter."""
+
+
+def _widens(top, bottom, right, left, bbuf) -> set[str]:
+    """Which of the perimeter's arrays a merge of `bbuf` changes ("inside already" if a point
+    changes none)."""
+    changes = set()
+    for x, y in bbuf:
+        changed = {
+            "raises top": y > top[x],
+            "lowers bottom": y < bottom[x],
+            "raises right": x > right[y],
+            "lowers left": x < left[y],
+        }
+        changes |= {name for name, yes in changed.items() if yes}
+        if not any(changed.values()):
+            changes.add("inside already")
+    return changes
+
+
+MERGE_FEATURES = {
+    name: lambda case, reference, name=name: any(
+        name in _widens(*args) for args, _ in reference.arguments
+    )
+    for name in ("raises top", "lowers bottom", "raises right", "lowers left", "inside already")
+}
+"""Tests of the merge's features: a point that widens each of the four arrays, and one the
+perimeter holds already (which must change nothing)."""
 
 
 TEST_SOLUTION = """\
@@ -317,6 +394,7 @@ EXERCISE_TEST = register(
         reference=perimeter_test,
         public=PUBLIC,
         generate=_perimeter_case,
+        **feature_tests({**{v: _viewing(v) for v in VIEWINGS}, **TEST_FEATURES}),
         variants=(
             _test_variant(
                 "on_perimeter_hidden",
@@ -429,6 +507,7 @@ EXERCISE_MERGE = register(
         reference=perimeter_merge,
         public=PUBLIC,
         generate=_perimeter_case,
+        **feature_tests({**{v: _viewing(v) for v in VIEWINGS}, **MERGE_FEATURES}),
         variants=(
             _merge_variant(
                 "reset_each_facet",
