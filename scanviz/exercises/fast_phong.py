@@ -23,7 +23,7 @@ from .. import steps
 from ..shading.fast_phong import ReflectionModel, fast_phong_triangle, forward_difference
 from ..shading.lut import specular_level
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 KINDS = ("fast_phong_pixel",)
 QUADRATICS = (  # the stepped quadratics, in the loop's order, named as the event's fields
@@ -224,7 +224,11 @@ def _normals_about(rng: random.Random, centre, tilt: float) -> list:
 
 
 def _fast_phong_case(rng: random.Random, feature: str | None = None) -> Case:
-    category = rng.choice(CATEGORIES)
+    """A shaded screen triangle; a category `feature` is that category, another one is drawn
+    until the feature test confirms it."""
+    category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
+    if feature == "about the centroid":
+        category = rng.choice(("phong highlight", "blinn highlight", "narrow highlight"))
     specular = SPECULAR.get(category) or rng.choice(("phong", "blinn"))
     n = rng.choice((6, 8, 16)) * (4 if specular == "blinn" else 1)
     ks, r_plus_r0 = rng.choice((0.5, 0.7, 1.0)), rng.choice((1.0, 1.2, 1.5))
@@ -251,10 +255,65 @@ def _fast_phong_case(rng: random.Random, feature: str | None = None) -> Case:
     kd = _round([rng.uniform(0.2, 0.8) for _ in "rgb"])
     model = _model(n, ks, r_plus_r0, specular, kd=kd)
     expansion = "vertex" if at_vertex else rng.choice(("vertex", "centroid"))
+    if feature == "about the centroid":
+        expansion = "centroid"
     label = f"{category}: {specular}, n = {n}, about {expansion}"
     return _case(
         label, vertices, normals, to_light, to_viewer, model, SIZE, SIZE, expansion, category
     )
+
+
+def _dot(a, b) -> float:
+    return sum(x * y for x, y in zip(a, b, strict=True))
+
+
+def _past_the_terminator(case: Case) -> bool:
+    """Whether some vertex normal turns away from the light (N . L < 0)."""
+    return any(_dot(n, case.inputs["to_light"]) < 0 for n in case.inputs["normals"])
+
+
+CASE_FEATURES = {
+    "phong highlight": lambda case, reference: case.inputs["model"]["specular"] == "phong",
+    "blinn highlight": lambda case, reference: case.inputs["model"]["specular"] == "blinn",
+    "narrow highlight": lambda case, reference: case.inputs["model"]["n"] >= 40,
+    "highlight at vertex U": lambda case, reference: (
+        case.inputs["to_light"] == case.inputs["to_viewer"] == case.inputs["normals"][0]
+    ),
+    "past the terminator": lambda case, reference: _past_the_terminator(case),
+    "about the centroid": lambda case, reference: case.inputs["expansion"] == "centroid",
+}
+"""Tests of the fast Phong cases' kinds: both specular terms, a narrow highlight (a steep
+table), cos φ = 1 exactly at vertex U, a normal past the terminator, either expansion point."""
+
+
+def _level(table, cos_phi, start, level) -> set[str]:
+    """How the search found `level` for `cos_phi` (which branch of the step)."""
+    found = {"a span's first sample (search)"} if start is None else set()
+    if start is not None:
+        found.add("walk up" if level > start else "walk down" if level < start else "level kept")
+    if level == 0:
+        found.add("below the table")
+    if level == len(table):
+        found.add("top of the table")
+    return found
+
+
+LEVEL_FEATURES = {
+    name: lambda case, reference, name=name: any(
+        name in _level(*args, level)
+        for (args, _), level in zip(reference.arguments, reference.calls, strict=True)
+    )
+    for name in (
+        "a span's first sample (search)",
+        "walk up",
+        "walk down",
+        "level kept",
+        "below the table",
+        "top of the table",
+    )
+}
+"""Tests of the level search's features: each branch (a binary search at a span's start, a walk
+up, down or none from the previous level) and both ends of the table."""
 
 
 LEVEL_SOLUTION = """\
@@ -337,6 +396,7 @@ register(
         reference=specular_level,
         public=PUBLIC,
         generate=_fast_phong_case,
+        **feature_tests({**CASE_FEATURES, **LEVEL_FEATURES}),
         variants=(
             _level_variant(
                 "strict",
@@ -429,6 +489,7 @@ register(
         reference=forward_difference,
         public=PUBLIC,
         generate=_fast_phong_case,
+        **feature_tests(CASE_FEATURES),
         variants=(
             _difference_variant(
                 "difference_first",
