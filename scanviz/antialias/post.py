@@ -25,6 +25,7 @@ evaluated there: the part of a segment off the raster costs nothing.
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 from numba import njit
@@ -215,6 +216,12 @@ def _segment_reference(
             continue
         if not simple:
             i, j = indices_of(slope, dxy)
+            for index in (i, j):  # a float index, even 13.0, is not one (the table is an array)
+                if isinstance(index, bool) or not isinstance(index, numbers.Integral):
+                    raise TypeError(
+                        f"step 'table_index' must return two ints; got {(i, j)!r}: "
+                        f"{index!r} is a {type(index).__name__}"
+                    )
         if not (0 <= i <= 50 and 0 <= j <= 50):
             raise ValueError(f"step 'table_index' must give indices in 0..50; got {(i, j)!r}")
         up, mid, low = (float(area) for area in lut[i, j])

@@ -25,6 +25,7 @@ the C cast rounds up, Python's round() to even) and Fig 5-1's line.
 
 from __future__ import annotations
 
+import math
 import random
 
 import numpy as np
@@ -35,7 +36,7 @@ from ..antialias.line import dislop_line, middle_column
 from ..antialias.post import post_antialias
 from ..antialias.tables import table_indices
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant
+from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
 KINDS = ("dislop_column",)
 CATEGORIES = ("shallow", "medium", "past 0.75", "45 degrees", "horizontal or vertical")
@@ -116,15 +117,18 @@ def _sixteenth(rng: random.Random, low: float, high: float) -> float:
 
 
 def _dislop_case(rng: random.Random, feature: str | None = None) -> Case:
-    """A line of 6 to 14 pixels along its major axis on a 16² raster, in any octant."""
-    category = rng.choice(CATEGORIES)
+    """A line of 6 to 14 pixels along its major axis on a 16² raster, in any octant; a category
+    `feature` is that category, "through pixel centres" a horizontal or vertical line there."""
+    category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
+    if feature == "through pixel centres":
+        category = "horizontal or vertical"
     length = rng.randint(6, 14)
     if category == "shallow":
         rise = _sixteenth(rng, 0.05, 0.5) * length
     elif category == "medium":
         rise = _sixteenth(rng, 0.5, 0.75) * length
     elif category == "past 0.75":
-        rise = _sixteenth(rng, 0.76, 1.0) * length
+        rise = _sixteenth(rng, 0.79, 1.0) * length  # 13/16 and up: never 0.75 itself
     elif category == "45 degrees":
         rise = float(length)
     else:
@@ -133,6 +137,8 @@ def _dislop_case(rng: random.Random, feature: str | None = None) -> Case:
     if category == "45 degrees":  # the same dxy in every column: 1/2, 0 or 1/16 - 1/2
         offset = rng.choice((0.5, 0.0, 1 / 16 - 0.5))
         start[1] = start[0] + offset + round(start[1] - start[0] - offset)
+    if feature == "through pixel centres":  # the line y = k + 1/2: dxy = 0 in every column
+        start[1] = math.floor(start[1]) + 0.5
     end = [start[0] + length, start[1] + rise]
     if rng.random() < 0.5:  # fall instead of rise: the walk negates v
         start[1], end[1] = end[1], start[1]
@@ -142,6 +148,37 @@ def _dislop_case(rng: random.Random, feature: str | None = None) -> Case:
         start, end = start[::-1], end[::-1]
     label = f"{category}: ({start[0]}, {start[1]}) to ({end[0]}, {end[1]})"
     return _case(label, start, end, SIZE, SIZE, category)
+
+
+def _columns(reference) -> list[tuple[float, float]]:
+    """(m, dxy) of every middle column the reference computed."""
+    return [tuple(args) for args, _ in reference.arguments]
+
+
+def _slopes(low: float, high: float):
+    return lambda case, reference: any(low <= m <= high for m, _ in _columns(reference))
+
+
+def _branch(name: str):
+    return lambda case, reference: any(
+        e.kind == "dislop_column" and e.branch == name for e in reference.trace
+    )
+
+
+DISLOP_FEATURES = {
+    "shallow": _slopes(0.05, 0.5),
+    "medium": _slopes(0.5, 0.75),
+    "past 0.75": lambda case, reference: any(0.75 < m < 1 for m, _ in _columns(reference)),
+    "45 degrees": _slopes(1, 1),
+    "horizontal or vertical": _slopes(0, 0),
+    "through pixel centres": lambda case, reference: any(
+        m == 0 and dxy == 0 for m, dxy in _columns(reference)
+    ),
+    **{branch: _branch(branch) for branch in ("flat", "two", "three", "three_triangle")},
+}
+"""Tests of the column areas' features: each branch of the formula (Fig 4-2), slopes in each
+range (past 0.75 the printed formula is not exact), and a horizontal line through the pixel
+centres (dxy = 0)."""
 
 
 SOLUTION = """\
@@ -228,6 +265,7 @@ register(
         reference=middle_column,
         public=PUBLIC,
         generate=_dislop_case,
+        **feature_tests(DISLOP_FEATURES),
         variants=(
             _variant(
                 "up_low_swapped",
@@ -412,12 +450,38 @@ def _post_segment(rng: random.Random, category: str) -> list:
 
 
 def _table_index_case(rng: random.Random, feature: str | None = None) -> Case:
-    category = rng.choice(POST_CATEGORIES)
+    """1-3 segments on a 16² raster; a category `feature` is that category, another drawn until
+    the feature test confirms it."""
+    category = feature if feature in POST_CATEGORIES else rng.choice(POST_CATEGORIES)
+    if feature in ("exact halves", "m = 0, dxy = 0"):
+        category = "ties" if feature == "exact halves" else "horizontal or 45 degrees"
     segments = [_post_segment(rng, category) for _ in range(rng.randint(1, 3))]
     edge = category == "polygon edges"
     flags = [rng.randint(0, 1) for _ in segments] if edge else None
     label = f"{category}: {len(segments)} segment{'s' if len(segments) > 1 else ''}"
     return _post_case(label, segments, SIZE, SIZE, "edge" if edge else "line", flags, category)
+
+
+def _half(value: float) -> bool:
+    return (value * 50) % 1 == 0.5
+
+
+INDEX_FEATURES = {
+    "lines": lambda case, reference: case.inputs["kind"] == "line",
+    "polygon edges": lambda case, reference: case.inputs["kind"] == "edge",
+    "steep lines": lambda case, reference: any(
+        abs(y1 - y0) > abs(x1 - x0) for (x0, y0), (x1, y1) in case.inputs["segments"]
+    ),
+    "exact halves": lambda case, reference: any(
+        _half(abs(m)) or _half(dxy + 0.5) for (m, dxy), _ in reference.arguments
+    ),
+    "m = 0, dxy = 0": lambda case, reference: any(
+        m == 0 and dxy == 0 for (m, dxy), _ in reference.arguments
+    ),
+    "m = 1": lambda case, reference: any(abs(m) == 1 for (m, _), _ in reference.arguments),
+}
+"""Tests of the table index's features: lines and edges, steep segments, an index exactly half way
+(the C cast rounds it up, Python's round() to even), and the table's corners."""
 
 
 INDEX_SOLUTION = """\
@@ -475,6 +539,7 @@ register(
         reference=table_indices,
         public=POST_PUBLIC,
         generate=_table_index_case,
+        **feature_tests(INDEX_FEATURES),
         variants=(
             _index_variant(
                 "round_half_even",

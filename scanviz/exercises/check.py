@@ -142,7 +142,7 @@ def check(
     --------
     >>> from scanviz.exercises import check, get
     >>> print(check("span_rule", source=get("span_rule").solution).headline())
-    span_rule -- public cases 4 of 4 -- hidden cases are graded later
+    span_rule -- public cases 5 of 5 -- hidden cases are graded later
     """
     exercise = get(exercise_id)
     if not isinstance(practice, int) or isinstance(practice, bool) or not 0 <= practice <= 1000:

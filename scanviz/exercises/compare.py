@@ -57,6 +57,8 @@ class Difference:
         mine = self._show(self.yours)
         if isinstance(self.yours, float) and isinstance(self.reference, Fraction):
             mine += " (a float: the reference is exact)"
+        elif isinstance(self.yours, float) and isinstance(self.reference, int):
+            mine += " (a float: an int is asked for)"
         return f"{where}yours {mine}, reference {self._show(self.reference)}"
 
     def _show(self, value: object) -> str:
@@ -115,6 +117,8 @@ def numbers_equal(yours: object, reference: object, rtol: float) -> bool:
     if isinstance(yours, bool | np.bool_) or isinstance(reference, bool | np.bool_):
         both = isinstance(yours, bool | np.bool_) and isinstance(reference, bool | np.bool_)
         return both and bool(yours) == bool(reference)
+    if isinstance(reference, int | np.integer) and isinstance(yours, float | np.floating):
+        return False  # an int is prescribed: 13.0 is not 13 (`Difference.describe` says so)
     if yours == reference:
         return True
     if isinstance(yours, float) and isinstance(reference, float) and math.isnan(yours):

@@ -223,7 +223,9 @@ def test_grading_is_deterministic():
 def test_a_float_index_is_an_error_of_the_run():
     answer = compile_answer("def table_index(m, dxy):\n    return 1.5, 2\n", "table_index")
     outcome = run_case(INDEX, answer, QUARTER)
-    assert outcome.error is not None and outcome.error.startswith("IndexError")
+    assert outcome.error == (
+        "TypeError: step 'table_index' must return two ints; got (1.5, 2): 1.5 is a float"
+    )
 
 
 def test_post_table_lists_every_look_up():
@@ -267,3 +269,15 @@ def test_the_released_notebook_grades_blank_zero_and_solved_full(tmp_path):
     assert [(g.exercise, g.status) for g in solved.grades] == [(INDEX.id, "passed")]
     assert solved.score == solved.max_score == INDEX.points
     assert blank.score == 0 and {g.status for g in blank.grades} == {"error"}
+
+
+def test_an_integer_valued_float_is_told_it_is_not_an_int():
+    # Issue 22: (13.0, 25.0) scored 0 with numpy's "only integers ... are valid indices".
+    floats = (
+        "def table_index(m, dxy):\n"
+        "    return float(int(abs(m) * 50 + 0.5)), float(int((dxy + 0.5) * 50 + 0.5))\n"
+    )
+    verdict = grade(INDEX, floats, INDEX.public[:1])[0]
+    text = verdict.describe()
+    assert "step 'table_index' must return two ints; got (13.0, 25.0): 13.0 is a float" in text
+    assert "yours 13.0 (a float: an int is asked for), reference 13" in text
