@@ -38,43 +38,56 @@ def grid_value(rng: random.Random, low: float, high: float, step: float = 0.25) 
 
 
 def star(
-    rng: random.Random, center: tuple[float, float], radius: float, points: int, turn: int = 0
+    rng: random.Random,
+    center: tuple[float, float],
+    radius: float,
+    points: int,
+    turn: int = 0,
+    step: float = 0.25,
 ) -> list:
-    """A star polygon {points/turn} on quarter pixels: each vertex `turn` points on from the last
+    """A star polygon {points/turn} on a grid of `step`: each vertex `turn` points on from the last
     (default 2 for an odd count, whose centre has winding 2; {7/3} has winding 3 there)."""
     cx, cy = center
     turn = turn or (2 if points % 2 else 1)
     return [
         [
-            round((cx + radius * math.cos(2 * math.pi * k * turn / points)) * 4) / 4,
-            round((cy + radius * math.sin(2 * math.pi * k * turn / points)) * 4) / 4,
+            _on_grid(cx + radius * math.cos(2 * math.pi * k * turn / points), step),
+            _on_grid(cy + radius * math.sin(2 * math.pi * k * turn / points), step),
         ]
         for k in range(points)
     ]
 
 
-def polygon(rng: random.Random, width: int, height: int) -> tuple[str, list]:
-    """(feature, vertices) of a random polygon inside a width x height raster.
+def polygon(
+    rng: random.Random, width: int, height: int, kind: str | None = None, step: float = 0.25
+) -> tuple[str, list]:
+    """(kind, vertices) of a random polygon inside a width x height raster.
 
-    The feature is one of `FEATURES` (the category a hidden case is shown as);
-    the polygon always has at least 3 distinct vertices.
+    The kind is `kind` or one of `FEATURES` at random (the category a hidden
+    case is shown as); the vertices lie on a grid of `step` pixels (the
+    shapes made of pixel centres, or of offsets from one vertex, on their
+    own grid); the polygon always has at least 3 distinct vertices.
     """
     while True:
-        feature, vertices = _polygon(rng, width, height)
+        name = kind or rng.choice(FEATURES)
+        vertices = _polygon(rng, name, width, height, step)
         if len({tuple(v) for v in vertices}) >= 3:
-            return feature, vertices
+            return name, vertices
 
 
-def _polygon(rng: random.Random, width: int, height: int) -> tuple[str, list]:
-    feature = rng.choice(FEATURES)
-    if feature == "horizontal edges":
-        x0, x1 = sorted(grid_value(rng, 0, width) for _ in range(2))
-        y0, y1 = sorted(grid_value(rng, 0, height) for _ in range(2))
+def _on_grid(value: float, step: float) -> float:
+    return round(value / step) * step
+
+
+def _polygon(rng: random.Random, kind: str, width: int, height: int, step: float) -> list:
+    if kind == "horizontal edges":
+        x0, x1 = sorted(grid_value(rng, 0, width, step) for _ in range(2))
+        y0, y1 = sorted(grid_value(rng, 0, height, step) for _ in range(2))
         x1, y1 = x1 + 1, y1 + 1
-        return feature, [[x0, y0], [x1, y0], [x1, y1], [(x0 + x1) / 2, y1 + 0.5], [x0, y1]]
-    if feature == "shared vertex":
+        return [[x0, y0], [x1, y0], [x1, y1], [(x0 + x1) / 2, y1 + 0.5], [x0, y1]]
+    if kind == "shared vertex":
         cx, cy = grid_value(rng, 1, width - 1, 1), grid_value(rng, 1, height - 1, 1)
-        return feature, [
+        return [
             [cx, cy],
             [cx - 1.5, cy - 1.75],
             [cx + 1.25, cy - 2],
@@ -82,24 +95,22 @@ def _polygon(rng: random.Random, width: int, height: int) -> tuple[str, list]:
             [cx + 2, cy + 1.5],
             [cx - 1, cy + 2],
         ]
-    if feature == "sliver":
-        x0, y0 = grid_value(rng, 0, width), grid_value(rng, 0, height)
-        x1, y1 = grid_value(rng, 0, width), grid_value(rng, 0, height)
-        return feature, [[x0, y0], [x1, y1], [x1 + 0.25, y1 + 0.5]]
-    if feature == "on pixel centers":
-        return feature, [
-            [grid_value(rng, 0, width, 0.5), grid_value(rng, 0, height, 0.5)] for _ in range(3)
-        ]
-    points = rng.randint(3, 6) if feature == "convex" else rng.choice((5, 7))
+    if kind == "sliver":
+        x0, y0 = grid_value(rng, 0, width, step), grid_value(rng, 0, height, step)
+        x1, y1 = grid_value(rng, 0, width, step), grid_value(rng, 0, height, step)
+        return [[x0, y0], [x1, y1], [x1 + 0.25, y1 + 0.5]]
+    if kind == "on pixel centers":
+        return [[grid_value(rng, 0, width, 0.5), grid_value(rng, 0, height, 0.5)] for _ in range(3)]
+    points = rng.randint(3, 6) if kind == "convex" else rng.choice((5, 7))
     center = (width / 2 + rng.uniform(-1, 1), height / 2 + rng.uniform(-1, 1))
     radius = min(width, height) / 2 * rng.uniform(0.6, 0.95)
-    if feature == "concave":
-        return feature, star(rng, center, radius, points)
+    if kind == "concave":
+        return star(rng, center, radius, points, step=step)
     angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(points))
-    return feature, [
+    return [
         [
-            round((center[0] + radius * math.cos(a)) * 4) / 4,
-            round((center[1] + radius * math.sin(a)) * 4) / 4,
+            _on_grid(center[0] + radius * math.cos(a), step),
+            _on_grid(center[1] + radius * math.sin(a), step),
         ]
         for a in angles
     ]

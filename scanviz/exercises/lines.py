@@ -56,10 +56,12 @@ def _pixel_of_call(index: int, trace: list) -> str:
     return f"call {index + 1}"
 
 
-_DIRECTIONS = {  # (major, minor) extents a feature's line is drawn along, per feature
-    "tie, minor step +1": ((2, 1), (4, 1), (4, 3), (6, 1), (6, 5)),
-    "tie, minor step -1": ((2, 1), (4, 1), (4, 3), (6, 1), (6, 5)),
-    "horizontal or vertical": ((1, 0), (2, 0), (3, 0), (5, 0)),
+# (major, minor) extents of lines through midpoints: d == 0 on some step
+TIES = ((2, 1), (4, 1), (4, 3), (6, 1), (6, 5))
+_EXTENTS = {  # the (major, minor) extents of a feature's line, before scaling
+    "tie, minor step +1": TIES,
+    "tie, minor step -1": TIES,
+    "horizontal or vertical": ((1, 0),),
     "45 degrees": ((1, 1),),
 }
 
@@ -67,26 +69,29 @@ _DIRECTIONS = {  # (major, minor) extents a feature's line is drawn along, per f
 def _line_case(rng: random.Random, feature: str | None = None) -> Case:
     """A line inside a SIZE x SIZE raster in any octant; a third run exactly through midpoints.
 
-    A `feature` of `LINE_FEATURES` picks the directions that can have it
-    (the feature test confirms the drawn line does).
+    A `feature` of `LINE_FEATURES` picks extents, axis and directions that give the line it:
+    a tie direction with the minor step's sign, a steep line, a line along the grid.
     """
-    directions = _DIRECTIONS.get(feature)
-    if directions is None and rng.random() < 1 / 3:  # (2m, m), (4m, m), (4m, 3m), ...: ties
-        directions = _DIRECTIONS["tie, minor step +1"]
-    while True:
-        x0, y0 = rng.randrange(SIZE), rng.randrange(SIZE)
-        if directions is not None:
-            major, minor = rng.choice(directions)
-            scale = rng.randint(1, 3)
-            dx, dy = major * scale, minor * scale
-            if rng.random() < 0.5:
-                dx, dy = dy, dx
-            dx, dy = dx * rng.choice((1, -1)), dy * rng.choice((1, -1))
-        else:
-            dx, dy = rng.randint(-SIZE + 1, SIZE - 1), rng.randint(-SIZE + 1, SIZE - 1)
-        x1, y1 = x0 + dx, y0 + dy
-        if 0 <= x1 < SIZE and 0 <= y1 < SIZE:
-            break
+    extents = _EXTENTS.get(feature)
+    if extents is None and rng.random() < 1 / 3:
+        extents = TIES
+    if extents is not None:
+        major, minor = rng.choice(extents)
+        scale = rng.randint(1, (SIZE - 1) // major)
+        major, minor = major * scale, minor * scale
+    else:
+        major = rng.randint(0 if feature is None else 1, SIZE - 1)  # 0: a single pixel
+        low = 1 if feature == "diagonal step" else 0  # a diagonal step needs minor > 0
+        high = major - 1 if feature in ("axial step", "steep") else major  # these minor < major
+        minor = rng.randint(low, high)
+    steep = feature == "steep" or (feature != "45 degrees" and rng.random() < 0.5)
+    minor_step = {"tie, minor step +1": 1, "tie, minor step -1": -1}.get(feature)
+    minor *= minor_step or rng.choice((1, -1))
+    major *= rng.choice((1, -1))
+    dx, dy = (minor, major) if steep else (major, minor)
+    x0 = rng.randint(max(0, -dx), SIZE - 1 - max(0, dx))
+    y0 = rng.randint(max(0, -dy), SIZE - 1 - max(0, dy))
+    x1, y1 = x0 + dx, y0 + dy
     inputs = {"x0": x0, "y0": y0, "x1": x1, "y1": y1, "width": SIZE, "height": SIZE}
     return Case(f"({x0}, {y0}) to ({x1}, {y1})", inputs, feature or _category(x0, y0, x1, y1))
 
@@ -298,6 +303,7 @@ LOOP_CASES = (
     _line("down to the right, ties (octant 7)", 1, 5, 9, 1, 10, 6),
     _line("steep, down to the left (octant 5)", 6, 12, 2, 1, 8, 13),
     _line("one pixel", 3, 2, 3, 2, 5, 4),
+    _line("45 degrees, down to the right (octant 7)", 1, 8, 8, 1, 10, 10),
 )
 
 register(
@@ -386,6 +392,14 @@ register(
                 "(x1 >= x0, y1 >= y0)",
                 ("step_x = 1 if x1 >= x0 else -1", "step_x = 1 if x1 > x0 else -1"),
                 ("step_y = 1 if y1 >= y0 else -1", "step_y = 1 if y1 > y0 else -1"),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "octant_at_45",
+                "a diagonal line (|dx| == |dy|) is put in the octant below its angle: octant k "
+                "holds the angles [45k, 45(k + 1)), so a line at 45k degrees is in octant k "
+                "(dy >= dx once turned into the first quadrant, not dy > dx)",
+                ("return 2 * quadrant + (dy >= dx)", "return 2 * quadrant + (dy > dx)"),
             ),
             edited_variant(
                 LOOP_SOLUTION,

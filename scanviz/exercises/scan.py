@@ -16,52 +16,185 @@ from ..raster.scanline import EdgeEntry, aet_update, edge_table_entry, span_rule
 from ..trace import Recorder
 from .cases import polygon, star
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant, feature_tests
+from .core import Case, Exercise, edited_variant, feature_tests
+
+IDEA_CONVENTIONS = (
+    "scanviz: y up, pixel (x, y) is the unit square sampled at its lower-left corner (x, y), "
+    "so sample rows are the integer y; an edge crosses row y when ymin <= y < ymax (half-open)."
+)
 
 
-def _scan_with_span_rule(fn, inputs, tracer):
-    from .. import steps
-
-    with steps.using(span_rule=fn):
+def _scan(inputs, tracer, **replaced):
+    with steps.using(**replaced):
         return scan_convert(
             inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=tracer
         )
 
 
-def _row_of_call(index: int, trace: list) -> str:
-    rows = [e.y for e in trace if e.kind == "aet_sorted"]
-    return f"row {rows[index]}" if index < len(rows) else f"call {index + 1}"
+def _case(label: str, vertices: list, width: int, height: int, rule: str = "nonzero") -> Case:
+    return Case(label, {"polygon": vertices, "width": width, "height": height, "rule": rule})
+
+
+UMBC = _case("the slide polygon (UMBC)", [[4, 1], [1, 11], [9, 5], [12, 8], [12, 1]], 14, 13)
+OFF_GRID = _case(
+    "triangle off the sample rows", [[1, 0.5], [7, 2.25], [3.5, 6.75]], 8, 8, "evenodd"
+)
+PENTAGRAM = _case(
+    "pentagram, nonzero", [[4, 0], [6.5, 7.5], [0, 2.75], [8, 2.75], [1.5, 7.5]], 9, 8
+)
+BELOW = _case(
+    "clockwise, crossing the bottom of the raster",
+    [[0.5, -1.5], [2, 5.75], [6.5, 3], [5, -0.25]],
+    8,
+    7,
+)
+BESIDE = _case(
+    "crossing the left, right and top sides of the raster",
+    [[-2.5, 1.25], [9.75, 2.5], [4, 8.5]],
+    8,
+    7,
+    "evenodd",
+)
+STAR_7_3 = _case(
+    "{7/3} star: winding 3 at the centre",
+    [[11.5, 6.0], [1.0, 8.5], [9.5, 1.75], [4.75, 11.25], [4.75, 0.75], [9.5, 10.25], [1.0, 3.5]],
+    12,
+    12,
+)
+
+STEPPER = (
+    "from scanviz.widgets import scan_conversion_stepper\n"
+    "scan_conversion_stepper(CASE['polygon'], CASE['width'], CASE['height'], rule=CASE['rule'])"
+)
+
+# --- the hidden cases of every scan exercise ----------------------------------------------
+
+LARGE = ("convex", "concave")  # shapes wide and tall enough for a side of the raster to cut
+_KINDS = {  # (kinds, grid step) of the polygon a feature's case is drawn from; others: any
+    "left of column 0": (LARGE, 0.25),
+    "crosses the raster border": (LARGE, 0.25),
+    "below row 0": (LARGE, 0.25),
+    "above the top row": (LARGE, 0.25),
+    "clockwise, nonzero": (LARGE, 0.25),
+    "vertex between rows": (LARGE, 0.25),
+    "overlap, nonzero": (("concave",), 0.25),
+    "overlap, evenodd": (("concave",), 0.25),
+    "empty run": (("concave",), 0.25),
+    "edges cross": (("concave",), 0.25),
+    "crossing on a sample": (LARGE, 1),  # vertices on samples: edges start on them
+    "equal x in the AET": (LARGE, 1),
+    "edge ends on a row": (LARGE, 1),
+    "horizontal edge on a row": (("horizontal edges",), 1),
+}
+_SIDES = {  # the raster sides a feature's polygon is moved across
+    "left of column 0": ("left",),
+    "crosses the raster border": ("left", "right"),
+    "below row 0": ("bottom",),
+    "above the top row": ("top",),
+}
+_RULES = {
+    "winding 3 or more": "nonzero",
+    "clockwise, nonzero": "nonzero",
+    "overlap, nonzero": "nonzero",
+    "overlap, evenodd": "evenodd",
+}
 
 
 def _span_case(rng: random.Random, feature: str | None = None) -> Case:
     """A polygon, a raster and a rule; a `feature` of `SCAN_FEATURES` shapes them to have it."""
     width, height = rng.randint(6, 12), rng.randint(6, 12)
-    shape, vertices = polygon(rng, width, height)
-    rule = rng.choice(("nonzero", "evenodd"))
-    center = (width / 2 + rng.uniform(-1, 1), height / 2 + rng.uniform(-1, 1))
-    radius = min(width, height) / 2 * rng.uniform(0.7, 0.95)
+    rule = _RULES.get(feature) or rng.choice(("nonzero", "evenodd"))
     if feature == "winding 3 or more":
-        shape, vertices = "{7/3} star", star(rng, center, radius, 7, turn=3)
-    elif feature in ("overlap, nonzero", "overlap, evenodd", "empty run"):
-        shape, vertices = "star", star(rng, center, radius, rng.choice((5, 7)))
-    if feature in ("clockwise, nonzero", "overlap, nonzero", "winding 3 or more"):
-        rule = "nonzero"
-    elif feature == "overlap, evenodd":
-        rule = "evenodd"
-    if feature == "clockwise, nonzero" or (feature is None and rng.random() < 0.3):
-        vertices = vertices[::-1]
-    if feature == "below row 0":
-        shift = round(rng.uniform(0.2, 0.6) * height * 4) / 4
-        vertices = [[x, y - shift] for x, y in vertices]
-    elif feature == "crosses the raster border" or (feature is None and rng.random() < 0.2):
-        dx, dy = (
-            rng.choice((-1, 1)) * width * rng.uniform(0.3, 0.6),
-            rng.uniform(-0.6, 0.6) * height,
+        center = (
+            rng.randint(width // 2 - 1, width // 2 + 1),
+            rng.randint(height // 2 - 1, height // 2 + 1),
         )
-        vertices = [[x + round(dx * 4) / 4, y + round(dy * 4) / 4] for x, y in vertices]
+        radius = min(width, height) / 2 * rng.uniform(0.7, 0.95)  # the centre sample: winding 3
+        shape, vertices = "{7/3} star", star(rng, center, radius, 7, turn=3)
+    elif feature == "slope not a binary fraction":
+        shape, vertices = "triangle", _tall_triangle(rng, width, height)
+    elif feature in _KINDS:
+        kinds, step = _KINDS[feature]
+        shape, vertices = polygon(rng, width, height, rng.choice(kinds), step)
+        while kinds == LARGE and _extent(vertices) < 3:  # random angles can bunch up
+            shape, vertices = polygon(rng, width, height, rng.choice(kinds), step)
+    else:
+        shape, vertices = polygon(rng, width, height)
+    if feature == "equal x in the AET":
+        vertices = _one_lowest(vertices)
+    if feature == "clockwise, nonzero" or rng.random() < 0.3:
+        vertices = vertices[::-1]
+    if feature in _SIDES:
+        vertices = _across(rng, vertices, rng.choice(_SIDES[feature]), width, height)
+    elif feature is None and rng.random() < 0.2:
+        side = rng.choice(("left", "right", "bottom", "top"))
+        vertices = _across(rng, vertices, side, width, height)
     category = feature or f"{shape}, {rule}"
     inputs = {"polygon": vertices, "width": width, "height": height, "rule": rule}
     return Case(category, inputs, category)
+
+
+def _across(rng: random.Random, vertices: list, side: str, width: int, height: int) -> list:
+    """`vertices` moved by quarter pixels across one side of the raster, partly inside.
+
+    "left" or "right": the widest first (last) inside run of a row starts a sample or more
+    left of column 0 (ends right of column width - 1), holding samples on both sides;
+    "bottom" or "top": the edge spanning most rows crosses row 0 from a row or more below it,
+    between two rows (crosses the top row from a row inside).
+    """
+    if side in ("left", "right"):
+        ys = [y for _, y in vertices]
+        rows = [_crossings(vertices, y) for y in range(math.ceil(min(ys)), math.ceil(max(ys)))]
+        rows = [xs for xs in rows if len(xs) > 1] or [sorted(x for x, _ in vertices)]  # no row
+        if side == "left":
+            xs = max(rows, key=lambda xs: xs[1] - xs[0])
+            shift = -(rng.randint(1, max(1, math.floor(xs[1] - xs[0] - 0.5))) + 0.5) - xs[0]
+        else:
+            xs = max(rows, key=lambda xs: xs[-1] - xs[-2])
+            shift = width + rng.randint(0, max(0, math.floor(xs[-1] - xs[-2] - 2))) + 0.5 - xs[-1]
+        return [[x + round(shift * 4) / 4, y] for x, y in vertices]
+    edges = zip(vertices, vertices[1:] + vertices[:1], strict=True)
+    low, high = max((sorted((a[1], b[1])) for a, b in edges), key=lambda e: e[1] - e[0])
+    half = math.floor((high - low) / 2)
+    rows = rng.randint(1, max(1, half)) if side == "bottom" else rng.randint(0, max(0, half - 1))
+    beyond = rows + rng.choice((0.25, 0.5, 0.75))
+    shift = -beyond - low if side == "bottom" else height + beyond - high
+    return [[x, y + shift] for x, y in vertices]
+
+
+def _tall_triangle(rng: random.Random, width: int, height: int) -> list:
+    """A triangle on samples with an edge 3 or 5 rows tall and not a multiple of that across:
+    its x steps by thirds or fifths, which no binary fraction holds."""
+    rise = rng.choice((3, 5))
+    run = rng.choice([d for d in range(-5, 6) if d % rise])
+    x0, y0 = rng.randint(max(0, -run), width - 1 - max(0, run)), rng.randint(0, height - 1 - rise)
+    t = rng.randint(0, rise)  # the third vertex 2 to 4 samples beside the edge's row t
+    third = [x0 + round(run * t / rise) + rng.choice((-1, 1)) * rng.randint(2, 4), y0 + t]
+    return [[x0, y0], [x0 + run, y0 + rise], third]
+
+
+def _one_lowest(vertices: list) -> list:
+    """`vertices` with the first lowest one alone on its row (the others there one row up):
+    the two edges from it enter the AET at the same x."""
+    low = min(y for _, y in vertices)
+    first = next(k for k, (_, y) in enumerate(vertices) if y == low)
+    return [[x, y + (y == low and k != first)] for k, (x, y) in enumerate(vertices)]
+
+
+def _extent(vertices: list) -> float:
+    """The smaller of the polygon's width and height."""
+    xs, ys = zip(*vertices, strict=True)
+    return min(max(xs) - min(xs), max(ys) - min(ys))
+
+
+def _crossings(vertices: list, y: float) -> list[float]:
+    """The sorted x where the polygon's edges cross the line y (each edge for ymin <= y < ymax)."""
+    xs = [
+        x0 + (x1 - x0) * (y - y0) / (y1 - y0)
+        for (x0, y0), (x1, y1) in zip(vertices, vertices[1:] + vertices[:1], strict=True)
+        if min(y0, y1) <= y < max(y0, y1)
+    ]
+    return sorted(xs)
 
 
 @functools.lru_cache(maxsize=1024)
@@ -94,14 +227,23 @@ def _inside(case: Case, winding: int) -> bool:
     return winding % 2 == 1 if case.inputs["rule"] == "evenodd" else winding != 0
 
 
+def _spans(case: Case) -> list[tuple[Fraction, Fraction, int]]:
+    """(x_in, x_out, winding) of the inside runs that hold a sample, before they are clipped."""
+    return [
+        (a, b, winding)
+        for a, b, winding in _intervals(case)
+        if _inside(case, winding) and math.ceil(a) < math.ceil(b)
+    ]
+
+
+def _crosses_a_side(case: Case, reference) -> bool:
+    width = case.inputs["width"]
+    beyond = any(math.ceil(a) < 0 or math.ceil(b) > width for a, b, _ in _spans(case))
+    return beyond and bool(_events(case, "span"))
+
+
 def _edges(case: Case) -> list:
     return [e for t in _events(case, "edge_table_built") for e in t.edges]
-
-
-def _crosses_border(case: Case, reference) -> bool:
-    width, height = case.inputs["width"], case.inputs["height"]
-    outside = any(not (0 <= x <= width and 0 <= y <= height) for x, y in case.inputs["polygon"])
-    return outside and bool(_events(case, "span"))
 
 
 def _rule(rule: str, test):
@@ -109,12 +251,23 @@ def _rule(rule: str, test):
 
 
 SCAN_FEATURES = {
-    "crosses the raster border": _crosses_border,
+    "left of column 0": lambda case, reference: (
+        bool(_events(case, "span")) and any(a < 0 and a % 1 for a, _, _ in _spans(case))
+    ),
+    "crosses the raster border": _crosses_a_side,
     "below row 0": lambda case, reference: (
-        min(y for _, y in case.inputs["polygon"]) < 0 and bool(_events(case, "span"))
+        bool(_events(case, "span"))
+        and any(not e.horizontal and e.bucket < 0 < e.row_end and e.ymin % 1 for e in _edges(case))
+    ),
+    "above the top row": lambda case, reference: (
+        bool(_events(case, "span"))
+        and any(
+            not e.horizontal and e.bucket < case.inputs["height"] < e.row_end for e in _edges(case)
+        )
     ),
     "winding 3 or more": lambda case, reference: any(
-        abs(w) >= 3 and _inside(case, w) for _, _, w in _intervals(case)
+        abs(w) >= 3 and max(math.ceil(a), 0) < min(math.ceil(b), case.inputs["width"])
+        for a, b, w in _spans(case)
     ),
     "clockwise, nonzero": _rule("nonzero", lambda c: any(w < 0 for _, _, w in _intervals(c))),
     "overlap, nonzero": _rule("nonzero", lambda c: any(abs(w) == 2 for _, _, w in _intervals(c))),
@@ -125,7 +278,10 @@ SCAN_FEATURES = {
     "crossing on a sample": lambda case, reference: any(
         e.x_exact.denominator == 1 for row in _events(case, "aet_sorted") for e in row.entries
     ),
-    "horizontal edge": lambda case, reference: any(e.horizontal for e in _edges(case)),
+    "horizontal edge on a row": lambda case, reference: any(
+        e.horizontal and e.ymin % 1 == 0 and 0 <= e.ymin < case.inputs["height"]
+        for e in _edges(case)
+    ),
     "vertex between rows": lambda case, reference: any(
         not e.horizontal and e.ymin % 1 for e in _edges(case)
     ),
@@ -146,13 +302,26 @@ SCAN_FEATURES = {
     ),
 }
 """Tests of the scan exercises' features: the inputs that broke real students' code (a polygon
-crossing the raster border, winding 3), each branch of the span rule (the rules, negative
-windings, overlaps, empty runs), of the edge-table entry (horizontal edges, ends between and on
-rows) and of the AET update (crossing edges, ties, inexact slopes)."""
+crossing the raster's sides, below row 0 or above the top row, winding 3, edges and crossings on
+sample rows and samples), each branch of the span rule (the rules, negative windings, overlaps,
+empty runs), of the edge-table entry (horizontal edges, ends between and on rows) and of the AET
+update (crossing edges, ties, inexact slopes)."""
 
 
 def _scan_features(*names: str) -> dict:
     return feature_tests({name: SCAN_FEATURES[name] for name in names})
+
+
+# --- 5: the span rule ------------------------------------------------------------------------
+
+
+def _scan_with_span_rule(fn, inputs, tracer):
+    return _scan(inputs, tracer, span_rule=fn)
+
+
+def _row_of_call(index: int, trace: list) -> str:
+    rows = [e.y for e in trace if e.kind == "aet_sorted"]
+    return f"row {rows[index]}" if index < len(rows) else f"call {index + 1}"
 
 
 SPAN_RULE_SOLUTION = """\
@@ -171,9 +340,17 @@ def span_rule(crossings, rule):
 """
 
 
-def _span_variant(name: str, hint: str, old: str, new: str) -> Variant:
-    assert old in SPAN_RULE_SOLUTION, old
-    return Variant(name, hint, SPAN_RULE_SOLUTION.replace(old, new))
+def _span_variant(name: str, hint: str, bounds: str):
+    """The variant of the span rule whose span bounds are `bounds` instead of ceil, ceil."""
+    return edited_variant(
+        SPAN_RULE_SOLUTION, name, hint, ("start, end = math.ceil(x_in), math.ceil(x_out)", bounds)
+    )
+
+
+WINDING_UP_TO_TWO = (
+    "inside only for winding +-1 and +-2: under the nonzero rule every winding but 0 is inside "
+    "(a {7/3} star has winding 3 at its centre)"
+)
 
 
 register(
@@ -207,58 +384,20 @@ register(
         call=_scan_with_span_rule,
         reference=span_rule,
         public=(
-            Case(
-                "triangle",
-                {"polygon": [[0, 0], [6, 0], [6, 5]], "width": 8, "height": 6, "rule": "nonzero"},
+            _case("triangle", [[0, 0], [6, 0], [6, 5]], 8, 6),
+            PENTAGRAM,
+            _case("pentagram, evenodd", PENTAGRAM.inputs["polygon"], 9, 8, "evenodd"),
+            STAR_7_3,
+            _case(
+                "clockwise, crossing the left, right and top sides of the raster",
+                BESIDE.inputs["polygon"][::-1],
+                8,
+                7,
             ),
-            Case(
-                "pentagram, nonzero",
-                {
-                    "polygon": [[4, 0], [6.5, 7.5], [0, 2.75], [8, 2.75], [1.5, 7.5]],
-                    "width": 9,
-                    "height": 8,
-                    "rule": "nonzero",
-                },
-            ),
-            Case(
-                "pentagram, evenodd",
-                {
-                    "polygon": [[4, 0], [6.5, 7.5], [0, 2.75], [8, 2.75], [1.5, 7.5]],
-                    "width": 9,
-                    "height": 8,
-                    "rule": "evenodd",
-                },
-            ),
-            Case(
-                "clockwise square on pixel centers",
-                {
-                    "polygon": [[1.5, 1.5], [1.5, 5.5], [5.5, 5.5], [5.5, 1.5]],
-                    "width": 7,
-                    "height": 7,
-                    "rule": "nonzero",
-                },
-            ),
-            Case(
-                "{7/3} star: winding 3 at the centre",
-                {
-                    "polygon": [
-                        [11.5, 6.0],
-                        [1.0, 8.5],
-                        [9.5, 1.75],
-                        [4.75, 11.25],
-                        [4.75, 0.75],
-                        [9.5, 10.25],
-                        [1.0, 3.5],
-                    ],
-                    "width": 12,
-                    "height": 12,
-                    "rule": "nonzero",
-                },
-            ),  # fmt: skip
         ),
         generate=_span_case,
         **_scan_features(
-            "crosses the raster border",
+            "left of column 0",
             "winding 3 or more",
             "clockwise, nonzero",
             "overlap, nonzero",
@@ -270,103 +409,67 @@ register(
             _span_variant(
                 "floor_for_ceil",
                 "floor instead of ceil: a span starts at the first sample x >= x_in, i.e. ceil(x_in)",
-                "start, end = math.ceil(x_in), math.ceil(x_out)",
                 "start, end = math.floor(x_in), math.floor(x_out)",
             ),
             _span_variant(
                 "closed_span",
                 "a closed span [x_in, x_out]: the right end is exclusive, x_end = ceil(x_out)",
-                "start, end = math.ceil(x_in), math.ceil(x_out)",
                 "start, end = math.ceil(x_in), math.floor(x_out) + 1",
             ),
             _span_variant(
                 "round_for_ceil",
                 "rounding to the nearest integer: a sample is inside only if x_in <= x, so use ceil",
-                "start, end = math.ceil(x_in), math.ceil(x_out)",
                 "start, end = round(x_in), round(x_out)",
             ),
             _span_variant(
+                "ceil_by_int",
+                "int() rounds toward zero, so int(x) + 1 is ceil(x) only for x > 0: left of "
+                "column 0 (x < 0) it is one sample too far right; use math.ceil",
+                "start = int(x_in) + (x_in != int(x_in))\n"
+                "        end = int(x_out) + (x_out != int(x_out))",
+            ),
+            edited_variant(
+                SPAN_RULE_SOLUTION,
                 "positive_winding_only",
                 "inside only when the count is positive: clockwise polygons have negative "
                 "winding numbers; the nonzero rule tests winding != 0",
-                "else winding != 0",
-                "else winding > 0",
+                ("else winding != 0", "else winding > 0"),
             ),
-            _span_variant(
+            edited_variant(
+                SPAN_RULE_SOLUTION,
                 "parity_always",
                 "the even-odd test used for both rules: under 'nonzero' an overlap with "
                 "winding 2 is inside",
-                'inside = winding % 2 == 1 if rule == "evenodd" else winding != 0',
-                "inside = winding % 2 == 1",
+                (
+                    'inside = winding % 2 == 1 if rule == "evenodd" else winding != 0',
+                    "inside = winding % 2 == 1",
+                ),
             ),
-            _span_variant(
+            edited_variant(
+                SPAN_RULE_SOLUTION,
                 "winding_up_to_two",
-                "inside only for winding +-1 and +-2: under the nonzero rule every winding but 0 "
-                "is inside (a {7/3} star has winding 3 at its centre)",
-                "else winding != 0",
-                "else winding in (1, -1, 2, -2)",
+                WINDING_UP_TO_TWO,
+                ("else winding != 0", "else winding in (1, -1, 2, -2)"),
             ),
-            _span_variant(
+            edited_variant(
+                SPAN_RULE_SOLUTION,
                 "pairs_only",
                 "taking crossings in pairs (0-1, 2-3, ...) ignores the winding count; "
                 "walk every consecutive pair and keep the count",
-                "for (x_in, step), (x_out, _) in zip(crossings, crossings[1:]):",
-                "for (x_in, step), (x_out, _) in zip(crossings[::2], crossings[1::2]):",
+                (
+                    "for (x_in, step), (x_out, _) in zip(crossings, crossings[1:]):",
+                    "for (x_in, step), (x_out, _) in zip(crossings[::2], crossings[1::2]):",
+                ),
             ),
         ),
         kinds=("aet_sorted", "span"),
         step="span_rule",
         place=_row_of_call,
         raster=lambda result: result.mask,
-        stepper=(
-            "from scanviz.widgets import scan_conversion_stepper\n"
-            "scan_conversion_stepper(CASE['polygon'], CASE['width'], CASE['height'], rule=CASE['rule'])"
-        ),
+        stepper=STEPPER,
     )
 )
 
-
-# --- shared by the ET, AET and loop exercises ----------------------------------------------
-
-IDEA_CONVENTIONS = (
-    "scanviz: y up, pixel (x, y) is the unit square sampled at its lower-left corner (x, y), "
-    "so sample rows are the integer y; an edge crosses row y when ymin <= y < ymax (half-open)."
-)
-
-
-def _scan(inputs, tracer, **replaced):
-    with steps.using(**replaced):
-        return scan_convert(
-            inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=tracer
-        )
-
-
-def _case(label: str, vertices: list, width: int, height: int, rule: str = "nonzero") -> Case:
-    return Case(label, {"polygon": vertices, "width": width, "height": height, "rule": rule})
-
-
-UMBC = _case("the slide polygon (UMBC)", [[4, 1], [1, 11], [9, 5], [12, 8], [12, 1]], 14, 13)
-OFF_GRID = _case(
-    "triangle off the sample rows", [[1, 0.5], [7, 2.25], [3.5, 6.75]], 8, 8, "evenodd"
-)
-PENTAGRAM = _case(
-    "pentagram, nonzero", [[4, 0], [6.5, 7.5], [0, 2.75], [8, 2.75], [1.5, 7.5]], 9, 8
-)
-BELOW = _case(
-    "clockwise, crossing the bottom of the raster",
-    [[0.5, -1.5], [2, 5.75], [6.5, 3], [5, -0.25]],
-    8,
-    7,
-)
-
-BESIDE = _case(
-    "crossing both sides of the raster", [[-2.5, 1.25], [9.75, 2.5], [4, 6.75]], 8, 7, "evenodd"
-)
-
-STEPPER = (
-    "from scanviz.widgets import scan_conversion_stepper\n"
-    "scan_conversion_stepper(CASE['polygon'], CASE['width'], CASE['height'], rule=CASE['rule'])"
-)
 
 # --- 3: the edge-table entry ---------------------------------------------------------------
 
@@ -435,8 +538,8 @@ register(
         public=(UMBC, OFF_GRID, PENTAGRAM, BELOW),
         generate=_span_case,
         **_scan_features(
-            "crosses the raster border",
-            "horizontal edge",
+            "below row 0",
+            "horizontal edge on a row",
             "vertex between rows",
             "edge ends on a row",
         ),
@@ -449,6 +552,17 @@ register(
                 (
                     "math.ceil(lower[1]), math.ceil(upper[1])",
                     "math.floor(lower[1]), math.ceil(upper[1])",
+                ),
+            ),
+            edited_variant(
+                ENTRY_SOLUTION,
+                "ceil_by_int",
+                "int() rounds toward zero, so int(y) + 1 is ceil(y) only for y > 0: below row 0 "
+                "(y < 0) it is one row too high; use math.ceil",
+                (
+                    "math.ceil(lower[1]), math.ceil(upper[1])",
+                    "int(lower[1]) + (lower[1] != int(lower[1])), "
+                    "int(upper[1]) + (upper[1] != int(upper[1]))",
                 ),
             ),
             edited_variant(
@@ -561,13 +675,13 @@ register(
         public=(UMBC, PENTAGRAM, OFF_GRID, BELOW),
         generate=_span_case,
         **_scan_features(
-            "crosses the raster border",
+            "below row 0",
             "winding 3 or more",
             "edges cross",
             "equal x in the AET",
             "slope not a binary fraction",
             "edge ends on a row",
-            "horizontal edge",
+            "horizontal edge on a row",
         ),
         variants=(
             edited_variant(
@@ -576,6 +690,13 @@ register(
                 "the entering edges join one row late: an edge is active from its bucket row "
                 "itself (bucket <= y)",
                 ("e.bucket <= y", "e.bucket < y"),
+            ),
+            edited_variant(
+                AET_SOLUTION,
+                "bucket_is_row",
+                "only edges whose bucket is this row enter: an edge starting below the raster "
+                "(bucket < 0) enters on row 0, so take every entering edge with bucket <= y",
+                ("e.bucket <= y", "e.bucket == y"),
             ),
             edited_variant(
                 AET_SOLUTION,
@@ -755,15 +876,16 @@ register(
         solution=LOOP_SOLUTION,
         call=_scan_loop,
         reference=reference_scan_loop,
-        public=(UMBC, OFF_GRID, PENTAGRAM, BELOW, BESIDE),
+        public=(UMBC, OFF_GRID, PENTAGRAM, BELOW, BESIDE, STAR_7_3),
         generate=_span_case,
         **_scan_features(
             "crosses the raster border",
             "below row 0",
+            "above the top row",
             "winding 3 or more",
             "clockwise, nonzero",
             "overlap, evenodd",
-            "horizontal edge",
+            "horizontal edge on a row",
             "crossing on a sample",
             "edges cross",
             "vertex between rows",
@@ -813,6 +935,20 @@ register(
                 "retire it when ceil(ymax) <= y",
                 ('e["row_end"] <= y', 'e["row_end"] < y'),
                 ('e["row_end"] > y', 'e["row_end"] >= y'),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "rows_above_the_raster",
+                "rows at and above the raster's top are scanned: the raster's rows are 0 to "
+                "height - 1, so scan while y < height and enter only edges starting below height",
+                ("while y < height and (aet or y in table):", "while aet or y in table:"),
+                ("if bucket < min(row_end, height):", "if bucket < row_end:"),
+            ),
+            edited_variant(
+                LOOP_SOLUTION,
+                "winding_up_to_two",
+                WINDING_UP_TO_TWO,
+                ("else winding != 0", "else winding in (1, -1, 2, -2)"),
             ),
             edited_variant(
                 LOOP_SOLUTION,

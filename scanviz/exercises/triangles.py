@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import random
 
 import numpy as np
@@ -106,11 +107,11 @@ def _triangles(rng: random.Random, feature: str) -> tuple[list, str]:
 
 
 _SHAPES = {  # the shapes of `_triangles` a feature is drawn from (others: any)
-    "horizontal edge": "horizontal edges",
-    "vertical edge": "horizontal edges",
+    "horizontal edge through samples": "horizontal edges",
+    "vertical edge through samples": "horizontal edges",
     "shared edge": "shared edge",
     "sample at pixel centers": "pixel centers",
-    "crosses the raster border": "quarter pixels",
+    "crosses the raster border": "shared edge",  # a quad big enough to cover samples across it
 }
 
 
@@ -118,17 +119,31 @@ def _triangles_case(rng: random.Random, feature: str | None = None) -> Case:
     shape = _SHAPES.get(feature) or rng.choice(FEATURES)
     while True:
         triangles, sample = _triangles(rng, shape)
-        if feature == "vertical edge":  # the horizontal edges' shapes, mirrored on the diagonal
-            triangles = [[[y, x] for x, y in t] for t in triangles]
-        if feature == "crosses the raster border":
-            dx, dy = (rng.choice((-1, 1)) * SIZE * rng.uniform(0.3, 0.6) for _ in range(2))
-            triangles = [[[x + round(dx), y + round(dy)] for x, y in t] for t in triangles]
         if all(_area2(t) != 0 for t in triangles):
             break
+    if feature == "vertical edge through samples":  # the horizontal edges' shapes, transposed
+        triangles = [[[y, x] for x, y in t] for t in triangles]
+    if feature in ("counter-clockwise", "clockwise"):  # the first triangle turned that way
+        if (_area2(triangles[0]) > 0) != (feature == "counter-clockwise"):
+            triangles[0] = triangles[0][::-1]
+    if feature == "crosses the raster border":
+        triangles = _across(rng, triangles)
     windings = {"counter-clockwise" if _area2(t) > 0 else "clockwise" for t in triangles}
     category = feature or f"{shape}, {' and '.join(sorted(windings))}"
     inputs = {"triangles": triangles, "width": SIZE, "height": SIZE, "sample": sample}
     return Case(category, inputs, category)
+
+
+def _across(rng: random.Random, triangles: list) -> list:
+    """`triangles` moved across one side of the raster by whole pixels: the farthest vertex
+    1 pixel to half their extent beyond it."""
+    axis, outward = rng.choice((0, 1)), rng.choice((-1, 1))
+    values = [p[axis] for t in triangles for p in t]
+    beyond = rng.randint(1, max(1, math.floor((max(values) - min(values)) / 2)))
+    shift = -beyond - min(values) if outward < 0 else SIZE + beyond - max(values)
+    return [
+        [[c + shift if k == axis else c for k, c in enumerate(p)] for p in t] for t in triangles
+    ]
 
 
 def _edges(case: Case) -> list:
@@ -137,6 +152,18 @@ def _edges(case: Case) -> list:
 
 def _covered(case: Case, reference) -> bool:
     return reference.raster is not None and bool(np.asarray(reference.raster).any())
+
+
+def _through_samples(case: Case, axis: int) -> bool:
+    """Whether an edge along x (`axis` 1: horizontal) or y (0: vertical) lies on samples."""
+    offset = 0.5 if case.inputs["sample"] == "center" else 0
+    return any(
+        a[axis] == b[axis]
+        and (a[axis] - offset) % 1 == 0
+        and math.ceil(min(a[1 - axis], b[1 - axis]) - offset)
+        <= max(a[1 - axis], b[1 - axis]) - offset
+        for a, b in _edges(case)
+    )
 
 
 def _shares_an_edge(case: Case) -> bool:
@@ -149,8 +176,8 @@ TRIANGLE_FEATURES = {
         _area2(t) > 0 for t in case.inputs["triangles"]
     ),
     "clockwise": lambda case, reference: any(_area2(t) < 0 for t in case.inputs["triangles"]),
-    "horizontal edge": lambda case, reference: any(a[1] == b[1] for a, b in _edges(case)),
-    "vertical edge": lambda case, reference: any(a[0] == b[0] for a, b in _edges(case)),
+    "horizontal edge through samples": lambda case, reference: _through_samples(case, 1),
+    "vertical edge through samples": lambda case, reference: _through_samples(case, 0),
     "shared edge": lambda case, reference: _shares_an_edge(case) and _covered(case, reference),
     "sample at pixel centers": lambda case, reference: case.inputs["sample"] == "center",
     "crosses the raster border": lambda case, reference: (
@@ -159,8 +186,9 @@ TRIANGLE_FEATURES = {
     ),
 }
 """Tests of the triangle exercises' features: both orientations (the sign of the edge functions
-and of the ownership test), horizontal and vertical edges (where the ownership rule reads b, not
-a), an edge two triangles share (covered once), the other sampling, and the raster's border."""
+and of the ownership test), horizontal and vertical edges with samples on them (where the
+ownership rule reads b, not a, and where a alone decides), an edge two triangles share (covered
+once), the other sampling, and triangles across a side of the raster."""
 
 
 CONVENTIONS = (

@@ -1,10 +1,12 @@
 """The midpoint exercises: midpoint_decision (the step) and midpoint_loop (the whole loop)."""
 
+import random
+
+import pytest
+
 from scanviz import midpoint_line, steps
 from scanviz.exercises import get
-from scanviz.exercises.core import (
-    hidden_cases,
-)
+from scanviz.exercises.core import hidden_cases, reference_outcome
 from scanviz.trace import Recorder
 
 from .support import grade, known_variant
@@ -74,3 +76,31 @@ def test_not_doubled_keeps_the_pixels_and_shows_the_halved_d():
     verdict = grade(LOOP, variant.source, LOOP.public[:1])[0]
     assert verdict.raster is None and verdict.result is None
     assert "d_start: yours 1, reference 3" in verdict.describe()
+
+
+@pytest.mark.parametrize(
+    ("exercise", "feature"),
+    [(e, f) for e in EXERCISES for f in e.features],
+    ids=[f"{e.id}-{f}" for e in EXERCISES for f in e.features],
+)
+def test_every_features_line_is_built_to_have_it(exercise, feature):
+    # Extents, axis and signs are chosen for the feature, so every draw has it: none is luck.
+    rng = random.Random(11)
+    for _ in range(20):
+        case = exercise.generate(rng, feature)
+        assert feature in exercise.exercised(case, reference_outcome(exercise, case)), case.inputs
+
+
+def test_octant_at_45_diagnostic_on_the_diagonal_line():
+    # (1, 8) to (8, 1) points at 315 degrees, the first angle of octant 7 = [315, 360); taking
+    # dy > dx for the upper half of a quadrant puts it in octant 6. The pixels are the same
+    # (every step is diagonal, d = -7 throughout): only the setup differs, 1 + 8 events in all.
+    variant = known_variant(LOOP, "octant_at_45")
+    case = next(c for c in LOOP.public if c.label.startswith("45 degrees"))
+    verdict = grade(LOOP, variant.source, [case])[0]
+    text = verdict.describe()
+    assert (
+        "first difference at event 1 of 9 -- line_setup\n    octant: yours 6, reference 7" in text
+    )
+    assert verdict.raster is None
+    assert text.endswith(variant.hint)

@@ -1,14 +1,13 @@
 """The scan-conversion exercises: edge_table_entry and aet_update (steps), scan_loop (the loop)."""
 
+import random
+
+import numpy as np
 import pytest
 
 from scanviz import scan_convert, steps
 from scanviz.exercises import get
-from scanviz.exercises.core import (
-    compile_answer,
-    hidden_cases,
-    run_case,
-)
+from scanviz.exercises.core import compile_answer, hidden_cases, reference_outcome, run_case
 from scanviz.trace import Recorder
 
 from .support import grade, known_variant
@@ -112,3 +111,84 @@ def test_activate_late_shows_the_missing_activation_first():
     run = run_case(AET, compile_answer(variant.source, "aet_update"), AET.public[0])
     activated = [(e.y, list(e.edges)) for e in run.trace if e.kind == "edges_activated"]
     assert activated == [(2, [0, 3]), (6, [1, 2])]
+
+
+@pytest.mark.parametrize(
+    ("exercise", "feature"),
+    [(e, f) for e in EXERCISES for f in e.features],
+    ids=[f"{e.id}-{f}" for e in EXERCISES for f in e.features],
+)
+def test_every_features_case_is_built_to_have_it(exercise, feature):
+    # The polygon and its place are chosen for the feature: (nearly) every draw has it, so no
+    # hidden case waits on luck.
+    rng = random.Random(11)
+    cases = [exercise.generate(rng, feature) for _ in range(20)]
+    have = [feature in exercise.exercised(c, reference_outcome(exercise, c)) for c in cases]
+    assert sum(have) >= 18
+
+
+BELOW_LABEL = "clockwise, crossing the bottom of the raster"
+
+
+def test_ceil_by_int_diagnostic_below_row_0():
+    # (0.5, -1.5), (2, 5.75), (6.5, 3), (5, -0.25): int(y) + 1 is ceil(y) for y > 0 only, so
+    # the entries differ for the three edges with an end below row 0: edge 0 (bucket
+    # ceil(-1.5) = -1, not 0), edge 2 (bucket ceil(-0.25) = 0, not 1) and edge 3 (both).
+    variant = known_variant(ENTRY, "ceil_by_int")
+    text = grade(ENTRY, variant.source, [_public(ENTRY, BELOW_LABEL)])[0].describe()
+    assert "first difference at event 1 of 17 -- edge_table_built\n" in text
+    assert "edges[0].bucket: yours 0, reference -1" in text
+    assert "yours differs at 3 of 4: edge 0 (0.5, -1.5)-(2, 5.75), edge 2 " in text
+    assert text.endswith(variant.hint)
+
+
+def test_bucket_is_row_diagnostic_below_row_0():
+    # Row 0 takes in edge 0 (bucket -1: it starts below the raster) and edge 2 (bucket 0);
+    # taking only bucket == y, edge 0 never enters and no row has a span. Only row 0's call
+    # differs: no other row has an edge from below the raster.
+    variant = known_variant(AET, "bucket_is_row")
+    case = _public(AET, BELOW_LABEL)
+    text = grade(AET, variant.source, [case])[0].describe()
+    assert "first difference at event 1 of 16 -- edges_activated, row 0\n" in text
+    assert "edges[0]: yours 2, reference 0" in text
+    assert "yours differs at 1 of 7: row 0\n" in text
+    i = case.inputs
+    inside = sum(
+        _winding(i["polygon"], x, y) != 0 for x in range(i["width"]) for y in range(i["height"])
+    )
+    assert f"samples: 0 matched (#), 0 extra (!), {inside} missing (?)" in text
+
+
+def test_rows_above_the_raster_diagnostic():
+    # Edges 1 and 2 of (-2.5, 1.25), (9.75, 2.5), (4, 8.5) reach y = 8.5, above the 7 rows:
+    # the reference's 13 events end on row 6 (rows 2-6; row 3 retires edge 0 and activates
+    # edge 1); scanning on adds rows 7 and 8 and retires both edges on row 9.
+    variant = known_variant(LOOP, "rows_above_the_raster")
+    case = _public(LOOP, "crossing the left, right and top sides of the raster")
+    text = grade(LOOP, variant.source, [case])[0].describe()
+    assert "first difference at event 14 of 13 -- aet_sorted, row 7\n    extra in yours" in text
+    assert "it also differs at: row 8, row 9 (2 places)" in text
+
+
+def _winding(polygon, x, y):
+    """The winding number at the sample (x, y): +1 for each downward edge crossing the row at or
+    left of x, -1 for each upward one (an edge crosses the rows ymin <= y < ymax)."""
+    winding = 0
+    for (x0, y0), (x1, y1) in zip(polygon, polygon[1:] + polygon[:1], strict=True):
+        if min(y0, y1) <= y < max(y0, y1) and x0 + (x1 - x0) * (y - y0) / (y1 - y0) <= x:
+            winding += 1 if y1 < y0 else -1
+    return winding
+
+
+def test_winding_up_to_two_loses_exactly_the_samples_of_winding_3():
+    variant = known_variant(LOOP, "winding_up_to_two")
+    case = _public(LOOP, "{7/3} star: winding 3 at the centre")
+    i = case.inputs
+    verdict = grade(LOOP, variant.source, [case])[0]
+    mine = LOOP.call(compile_answer(variant.source, LOOP.answer), dict(i), Recorder(LOOP.kinds))
+    windings = np.array(
+        [[_winding(i["polygon"], x, y) for x in range(i["width"])] for y in range(i["height"])]
+    )
+    assert (windings == 3).sum() == 5
+    assert (mine == np.isin(windings, (1, 2))).all()
+    assert verdict.describe().endswith(variant.hint)

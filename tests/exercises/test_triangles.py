@@ -1,12 +1,13 @@
 """The edge-function exercises: ownership_ties (owns_boundary) and edge_functions (edge_function)."""
 
+import random
+
 import pytest
 
 from scanviz import triangle_samples
 from scanviz.exercises import get
-from scanviz.exercises.core import (
-    hidden_cases,
-)
+from scanviz.exercises.core import hidden_cases, reference_outcome
+from scanviz.exercises.triangles import SIZE
 from scanviz.trace import Recorder
 
 from .support import grade, known_variant
@@ -71,3 +72,26 @@ def test_c_wrong_diagnostic_on_the_right_triangle():
     assert "edges[1].c: yours -1920, reference 1920" in text
     assert "yours differs at 1 of 3: triangle 0, edge 1" in text
     assert "samples: 0 matched (#), 0 extra (!), 20 missing (?)" in text
+
+
+@pytest.mark.parametrize(
+    ("exercise", "feature"),
+    [(e, f) for e in EXERCISES for f in e.features],
+    ids=[f"{e.id}-{f}" for e in EXERCISES for f in e.features],
+)
+def test_every_features_triangles_are_built_to_have_it(exercise, feature):
+    # Shape, orientation and place are chosen for the feature, so every draw has it: none is luck.
+    rng = random.Random(11)
+    for _ in range(20):
+        case = exercise.generate(rng, feature)
+        assert feature in exercise.exercised(case, reference_outcome(exercise, case)), case.inputs
+
+
+def test_triangles_across_the_border_cover_samples_inside_and_reach_beyond():
+    rng = random.Random(7)
+    for _ in range(20):
+        case = OWNERSHIP.generate(rng, "crosses the raster border")
+        counts, _ = OWNERSHIP.call(OWNERSHIP.reference, dict(case.inputs), None)
+        coordinates = [c for t in case.inputs["triangles"] for p in t for c in p]
+        assert counts.any() and counts.max() == 1  # the shared edge is still covered once
+        assert min(coordinates) <= -1 or max(coordinates) >= SIZE + 1
