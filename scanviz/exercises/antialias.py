@@ -109,6 +109,13 @@ PUBLIC = (
         17,
         5,
     ),
+    _case(
+        "a vertical line through the pixel centres (m = 0, dxy = 0): mid = 1, up = low = 0",
+        (2.5, 0.5),
+        (2.5, 11.5),
+        5,
+        12,
+    ),
 )
 
 
@@ -116,42 +123,69 @@ def _sixteenth(rng: random.Random, low: float, high: float) -> float:
     return round(rng.uniform(low, high) * 16) / 16
 
 
+THROUGH_CENTRES = (
+    "horizontal through pixel centres",
+    "vertical through pixel centres",
+    "45° through pixel centres",
+)
+_SHAPES = {  # feature: (the categories its line may be in, dxy at its middle column)
+    "flat": (("horizontal or vertical",), None),
+    "two": (("shallow",), 0.5),  # ad = 1/2 > fcv while m <= 1/2
+    "three": (("past 0.75", "45 degrees"), 0.5),  # ad = 1/2 <= fcv and scv > m/2 from m = 13/16
+    "three_triangle": (("shallow", "medium", "past 0.75", "45 degrees"), 0.0),  # scv = dw/2 < m/2
+    "horizontal through pixel centres": (("horizontal or vertical",), 0.0),
+    "vertical through pixel centres": (("horizontal or vertical",), 0.0),
+    "45° through pixel centres": (("45 degrees",), 0.0),
+}
+_SLOPES = {  # category: the range of its first-octant slopes, in sixteenths
+    "shallow": (0.05, 0.5),
+    "medium": (0.5, 0.75),
+    "past 0.75": (0.79, 0.96),  # 13/16 to 15/16: neither 0.75 nor 1
+    "45 degrees": (1.0, 1.0),
+    "horizontal or vertical": (0.0, 0.0),
+}
+
+
 def _dislop_case(rng: random.Random, feature: str | None = None) -> Case:
-    """A line of 6 to 14 pixels along its major axis on a 16² raster, in any octant; a category
-    `feature` is that category, "through pixel centres" a horizontal or vertical line there."""
-    category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
-    if feature == "through pixel centres":
-        category = "horizontal or vertical"
-    length = rng.randint(6, 14)
-    if category == "shallow":
-        rise = _sixteenth(rng, 0.05, 0.5) * length
-    elif category == "medium":
-        rise = _sixteenth(rng, 0.5, 0.75) * length
-    elif category == "past 0.75":
-        rise = _sixteenth(rng, 0.79, 1.0) * length  # 13/16 and up: never 0.75 itself
-    elif category == "45 degrees":
-        rise = float(length)
-    else:
-        rise = 0.0
-    start = [_sixteenth(rng, 0.0, SIZE - 1 - length), _sixteenth(rng, 0.0, SIZE - 1 - rise)]
-    if category == "45 degrees":  # the same dxy in every column: 1/2, 0 or 1/16 - 1/2
-        offset = rng.choice((0.5, 0.0, 1 / 16 - 0.5))
-        start[1] = start[0] + offset + round(start[1] - start[0] - offset)
-    if feature == "through pixel centres":  # the line y = k + 1/2: dxy = 0 in every column
-        start[1] = math.floor(start[1]) + 0.5
-    end = [start[0] + length, start[1] + rise]
+    """A line of 8 to 14 pixels along its major axis on a 16² raster, in any octant.
+
+    A `feature` of `DISLOP_FEATURES` picks the category and the offset dxy of the middle
+    column halfway along the line that give it (dxy is the same in every column of a
+    horizontal, vertical or 45° line); the walk's reflections keep |dxy| (the fall mirrors
+    the raster, pixel centres onto pixel centres).
+    """
+    categories, dxy = _SHAPES.get(
+        feature, ((feature,) if feature in CATEGORIES else CATEGORIES, None)
+    )
+    category = rng.choice(categories)
+    length = rng.randint(8, 14)
+    m = _sixteenth(rng, *_SLOPES[category])
+    if dxy is None:  # any; a 45° line has it in every column: 1/2, 0 or 1/16 - 1/2
+        dxy = rng.choice((0.5, 0.0, 1 / 16 - 0.5)) if m == 1 else _sixteenth(rng, -0.45, 0.5)
+    x0 = _sixteenth(rng, 0.0, SIZE - 1 - length)
+    column = math.floor(x0) + length // 2  # at least 4 columns from either end: a middle one
+    run = column + 0.5 - x0  # from the start to the middle column's centre
+    row = math.floor(_sixteenth(rng, 0.0, SIZE - 1 - m * length) + m * run)
+    y0 = row + 0.5 + dxy - m * run  # the line is dxy above the middle pixel's centre there
+    if not 0 <= y0 <= SIZE - 1 - m * length:  # a row up or down keeps it on the raster
+        y0 += 1 if y0 < 0 else -1
+    start, end = [x0, y0], [x0 + length, y0 + m * length]
     if rng.random() < 0.5:  # fall instead of rise: the walk negates v
-        start[1], end[1] = end[1], start[1]
+        start[1], end[1] = SIZE - 1 - start[1], SIZE - 1 - end[1]
     if rng.random() < 0.5:  # run right to left: the walk reverses the segment
         start, end = end, start
-    if rng.random() < 0.5:  # steep on the screen: the walk swaps x and y
+    if feature in THROUGH_CENTRES[:2]:
+        steep = feature == THROUGH_CENTRES[1]
+    else:
+        steep = rng.random() < 0.5
+    if steep:  # steep on the screen: the walk swaps x and y
         start, end = start[::-1], end[::-1]
-    label = f"{category}: ({start[0]}, {start[1]}) to ({end[0]}, {end[1]})"
-    return _case(label, start, end, SIZE, SIZE, category)
+    label = f"{feature or category}: ({start[0]}, {start[1]}) to ({end[0]}, {end[1]})"
+    return _case(label, start, end, SIZE, SIZE, feature or category)
 
 
 def _columns(reference) -> list[tuple[float, float]]:
-    """(m, dxy) of every middle column the reference computed."""
+    """(m, dxy) of every column the reference called the step in."""
     return [tuple(args) for args, _ in reference.arguments]
 
 
@@ -165,20 +199,33 @@ def _branch(name: str):
     )
 
 
+def _through_centres(axis: int | None, m: float):
+    """A segment along `axis` (0: horizontal, 1: vertical, None: either) and a call of the step
+    at slope `m` in a column through the pixel centres (dxy = 0); of a line or of post's
+    segments."""
+
+    def test(case, reference):
+        segments = case.inputs.get("segments") or [(case.inputs["p0"], case.inputs["p1"])]
+        along = axis is None or any(p0[1 - axis] == p1[1 - axis] for p0, p1 in segments)
+        return along and (m, 0.0) in _columns(reference)
+
+    return test
+
+
 DISLOP_FEATURES = {
     "shallow": _slopes(0.05, 0.5),
     "medium": _slopes(0.5, 0.75),
     "past 0.75": lambda case, reference: any(0.75 < m < 1 for m, _ in _columns(reference)),
     "45 degrees": _slopes(1, 1),
     "horizontal or vertical": _slopes(0, 0),
-    "through pixel centres": lambda case, reference: any(
-        m == 0 and dxy == 0 for m, dxy in _columns(reference)
-    ),
+    THROUGH_CENTRES[0]: _through_centres(0, 0.0),
+    THROUGH_CENTRES[1]: _through_centres(1, 0.0),
+    THROUGH_CENTRES[2]: _through_centres(None, 1.0),
     **{branch: _branch(branch) for branch in ("flat", "two", "three", "three_triangle")},
 }
-"""Tests of the column areas' features: each branch of the formula (Fig 4-2), slopes in each
-range (past 0.75 the printed formula is not exact), and a horizontal line through the pixel
-centres (dxy = 0)."""
+"""Tests of the column areas' features: slopes in each range (past 0.75 the printed formula is
+not exact), horizontal, vertical and 45° lines through the pixel centres (dxy = 0, where
+ad = fcv = 0 for m = 0), and each branch of the formula (Fig 4-2)."""
 
 
 SOLUTION = """\
@@ -267,6 +314,16 @@ register(
         generate=_dislop_case,
         **feature_tests(DISLOP_FEATURES),
         variants=(
+            _variant(
+                "no_flat_branch",
+                "a horizontal or vertical line (m = 0) needs its own branch, up = |dxy| and "
+                "low = 0: through the pixel centres ad = fcv = scv = 0, so neither ad > fcv nor "
+                "scv > m / 2 holds and the triangle formula divides by 2m = 0",
+                (
+                    "    if m == 0:\n        up, low = ad, 0.0\n    elif ad > fcv:\n",
+                    "    if ad > fcv:\n",
+                ),
+            ),
             _variant(
                 "up_low_swapped",
                 "up is the pixel above the middle one (y > 1/2): for dxy > 0 the line leans "
@@ -449,17 +506,48 @@ def _post_segment(rng: random.Random, category: str) -> list:
     return [start, end]
 
 
+HALF_OFF = "half a pixel off the centres"
+_DIRECTIONS = dict(zip(THROUGH_CENTRES, ("horizontal", "vertical", "45°"), strict=True))
+
+
+def _grid_segment(rng: random.Random, direction: str, offset: float) -> list:
+    """A horizontal, vertical or 45° segment of 5 to 14 pixels on the 16² raster whose every
+    column is `offset` from the pixel centres (dxy = `offset`; 1/2: between two rows)."""
+    length = rng.randint(5, 14)
+    x0 = _sixteenth(rng, 0.0, SIZE - 1 - length)
+    if direction == "45°":  # y = x + c: at a column centre x = k + 1/2, y = k + c + 1/2
+        c = rng.randint(math.ceil(-x0 - offset), math.floor(SIZE - 1 - length - x0 - offset))
+        y0, rise = x0 + c + offset, length
+    else:
+        y0, rise = rng.randint(0, SIZE - 2) + 0.5 + offset, 0
+    start, end = [x0, y0], [x0 + length, y0 + rise]
+    if rng.random() < 0.5:  # fall: the raster's mirror keeps pixel centres on pixel centres
+        start[1], end[1] = SIZE - 1 - start[1], SIZE - 1 - end[1]
+    if rng.random() < 0.5:
+        start, end = end, start
+    if direction == "vertical":
+        start, end = start[::-1], end[::-1]
+    return [start, end]
+
+
 def _table_index_case(rng: random.Random, feature: str | None = None) -> Case:
-    """1-3 segments on a 16² raster; a category `feature` is that category, another drawn until
-    the feature test confirms it."""
+    """1-3 segments on a 16² raster; a category `feature` is that category, a line through the
+    pixel centres or half a pixel off them is built so, "exact halves" are ties."""
+    if feature in THROUGH_CENTRES or feature == HALF_OFF:
+        offset = 0.5 if feature == HALF_OFF else 0.0
+        direction = _DIRECTIONS.get(feature) or rng.choice(list(_DIRECTIONS.values()))
+        segments = [_grid_segment(rng, direction, offset) for _ in range(rng.randint(1, 3))]
+        label = f"{feature}: {len(segments)} segment{'s' if len(segments) > 1 else ''}"
+        return _post_case(label, segments, SIZE, SIZE, "line", None, feature)
     category = feature if feature in POST_CATEGORIES else rng.choice(POST_CATEGORIES)
-    if feature in ("exact halves", "m = 0, dxy = 0"):
-        category = "ties" if feature == "exact halves" else "horizontal or 45 degrees"
+    if feature == "exact halves":
+        category = "ties"
     segments = [_post_segment(rng, category) for _ in range(rng.randint(1, 3))]
     edge = category == "polygon edges"
     flags = [rng.randint(0, 1) for _ in segments] if edge else None
-    label = f"{category}: {len(segments)} segment{'s' if len(segments) > 1 else ''}"
-    return _post_case(label, segments, SIZE, SIZE, "edge" if edge else "line", flags, category)
+    label = f"{feature or category}: {len(segments)} segment{'s' if len(segments) > 1 else ''}"
+    kind = "edge" if edge else "line"
+    return _post_case(label, segments, SIZE, SIZE, kind, flags, feature or category)
 
 
 def _half(value: float) -> bool:
@@ -475,13 +563,14 @@ INDEX_FEATURES = {
     "exact halves": lambda case, reference: any(
         _half(abs(m)) or _half(dxy + 0.5) for (m, dxy), _ in reference.arguments
     ),
-    "m = 0, dxy = 0": lambda case, reference: any(
-        m == 0 and dxy == 0 for (m, dxy), _ in reference.arguments
-    ),
-    "m = 1": lambda case, reference: any(abs(m) == 1 for (m, _), _ in reference.arguments),
+    THROUGH_CENTRES[0]: _through_centres(0, 0.0),
+    THROUGH_CENTRES[1]: _through_centres(1, 0.0),
+    THROUGH_CENTRES[2]: _through_centres(None, 1.0),
+    HALF_OFF: lambda case, reference: any(dxy == 0.5 for (_, dxy), _ in reference.arguments),
 }
 """Tests of the table index's features: lines and edges, steep segments, an index exactly half way
-(the C cast rounds it up, Python's round() to even), and the table's corners."""
+(the C cast rounds it up, Python's round() to even), horizontal, vertical and 45° lines through
+the pixel centres (i = 0 or 50, j = 25) and a line half a pixel off them (j = 50)."""
 
 
 INDEX_SOLUTION = """\
@@ -567,6 +656,14 @@ register(
                 "so scale by 50, not 51",
                 ("int(abs(m) * 50 + 0.5)", "int(abs(m) * 51 + 0.5)"),
                 ("int((dxy + 0.5) * 50 + 0.5)", "int((dxy + 0.5) * 51 + 0.5)"),
+            ),
+            _index_variant(
+                "j_wraps",
+                "j runs from 0 to 50: dxy = 1/2, the line half a pixel above the middle pixel's "
+                "centre, reads the table's last row, j = 50. j = 0 is dxy = -1/2, the line half "
+                "a pixel below its middle pixel's centre: the areas of other pixels. Do not wrap "
+                "j to 0 (no % 50)",
+                ("int((dxy + 0.5) * 50 + 0.5)", "int((dxy + 0.5) * 50 + 0.5) % 50"),
             ),
             _index_variant(
                 "swapped",

@@ -57,7 +57,11 @@ class Difference:
         mine = self._show(self.yours)
         if isinstance(self.yours, float) and isinstance(self.reference, Fraction):
             mine += " (a float: the reference is exact)"
-        elif isinstance(self.yours, float) and isinstance(self.reference, int):
+        elif (
+            isinstance(self.yours, float)
+            and isinstance(self.reference, int)
+            and not isinstance(self.reference, bool)
+        ):
             mine += " (a float: an int is asked for)"
         return f"{where}yours {mine}, reference {self._show(self.reference)}"
 

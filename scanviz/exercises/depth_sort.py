@@ -95,27 +95,85 @@ def _rotated_bars(rng: random.Random, size: int) -> list:
 
 
 CATEGORIES = ("sloped polygons", "touching rectangles", "cyclic bars", "mixed")
-HAIR = 2.0**-32  # "near-equal depths": in front of a plane by this, within the plane tolerance
+NEAR = "near-equal depths"
+BEYOND = "depths just beyond the tolerance"
+GAPS = {  # how far a vertex is in front of a plane; the tolerance is 1e-9 x max(1, max |z|)
+    NEAR: 2.0**-32,  # 2.3e-10: on the plane, within the tolerance
+    BEYOND: 2.0**-28,  # 3.7e-9: in front of it, beyond the tolerance (and far below 1e-6)
+}
 
 
-def _on_plane_of(rng: random.Random, polygon: list, width: int, height: int) -> list:
-    """Another polygon lying a hair in front of `polygon`'s plane (as its three first points
-    span it), overlapping it on the screen."""
-    (x0, y0, z0), (x1, y1, z1), (x2, y2, z2) = polygon[:3]
-    det = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
-    dzdx = ((z1 - z0) * (y2 - y0) - (z2 - z0) * (y1 - y0)) / det
-    dzdy = ((x1 - x0) * (z2 - z0) - (x2 - x0) * (z1 - z0)) / det
-    other = plane_polygon(rng, width, height, depth=(0.5, 0.5), slope=0)
-    return [[x, y, z0 + dzdx * (x - x0) + dzdy * (y - y0) - HAIR] for x, y, _ in other]
+def _quarter(rng: random.Random, low: float, high: float) -> float:
+    return round(rng.uniform(low, high) * 4) / 4
+
+
+def _depth_plane(rng: random.Random, x0: float, y0: float, tilt: bool):
+    """A depth plane rising to the right (and up or down if `tilt`) by dyadic steps, so that its
+    depth at quarter pixels is exact in floating point (and so is a vertex `GAPS` off it)."""
+    dzdx, dzdy = rng.choice((1, 2)) / 128, rng.choice((-1, 0, 1)) / 256 if tilt else 0.0
+    return lambda x, y: 0.75 + dzdx * (x - x0) + dzdy * (y - y0)
+
+
+def _corners(rng: random.Random, x0, y0, x1, y1, depth) -> list:
+    """The rectangle [x0, x1] x [y0, y1], or a triangle of three of its corners, on `depth`."""
+    corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+    if rng.random() < 0.5:
+        corners.pop(rng.randrange(4))
+    return [[x, y, depth(x, y)] for x, y in corners]
+
+
+def _near_pair(rng: random.Random, size: int, gap: float) -> list:
+    """Two polygons, S and S' of the step's first call, where the vertex of S nearest in front
+    of the plane of S' is `gap` in front of it, their extents overlap (so the plane tests
+    decide) and some test passes whatever the gap.
+
+    Either S lies wholly `gap` in front of the plane of S' and reaches past it where that plane
+    is deepest (so S is farther), or S' is flat at the depth of S's nearest vertices plus `gap`
+    (their depth extents overlap by `gap`), where S's plane is deeper. Built on quarter pixels
+    in a canonical frame, then turned by a random symmetry of the size x size raster.
+    """
+    on_plane = rng.random() < 0.5
+    x0, y0 = _quarter(rng, 0.5, 3), _quarter(rng, 0.5, 3)
+    x1, y1 = x0 + _quarter(rng, 3, 5), y0 + _quarter(rng, 3, size - 4 - y0)
+    depth = _depth_plane(rng, x0, y0, tilt=on_plane)
+    plane = _corners(rng, x0, y0, x1, y1, depth)
+    if on_plane:  # S on the plane of S', from inside it to past its deepest side
+        left, right = _quarter(rng, x0 + 1, x1 - 1), _quarter(rng, x1 + 1, size - 1)
+        low, high = _quarter(rng, 0, y0), _quarter(rng, y1, size)  # S's rows hold those of S'
+        corners = [(left, low), (right, low), (right, high), (left, high)]
+        pair = [plane, [[x, y, depth(x, y) - gap] for x, y in corners]]
+    else:  # S' flat, a quarter pixel and more right of S's nearest vertices (at x0)
+        left, right = x0 + 0.25, x0 + _quarter(rng, 1, 3)
+        low, high = _quarter(rng, 0, y0 + 1), _quarter(rng, y1 - 1, size)
+        corners = [(left, low), (right, low), (right, high), (left, high)]
+        pair = [[[x, y, depth(x0, y0) + gap] for x, y in corners], plane]
+    flip_x, flip_y, swap = (rng.random() < 0.5 for _ in range(3))
+    turned = []
+    for polygon in pair:
+        points = []
+        for x, y, z in polygon:
+            x, y = size - x if flip_x else x, size - y if flip_y else y
+            points.append([y, x, z] if swap else [x, y, z])
+        turned.append(points)
+    return turned
 
 
 def _depth_sort_case(rng: random.Random, feature: str | None = None) -> Case:
-    """Screen polygons; a `feature` of `DEPTH_SORT_FEATURES` picks the kind that can have it."""
+    """Screen polygons; a `feature` of `DEPTH_SORT_FEATURES` picks the kind that can have it:
+    the near-equal depths build their pair, with up to two polygons nearer than it."""
     width, height = rng.randint(10, 16), rng.randint(10, 16)
     category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
     if feature == "extents touch":
         category = "touching rectangles"
-    if category == "cyclic bars":
+    if feature in GAPS:
+        width = height = rng.randint(12, 16)
+        polygons = _near_pair(rng, width, GAPS[feature])
+        # nearer than the pair (depths below 0.37 and 0.68 up): tested only after it is painted
+        polygons += [
+            plane_polygon(rng, width, height, depth=(0.15, 0.3), slope=0.005)
+            for _ in range(rng.randint(0, 2))
+        ]
+    elif category == "cyclic bars":
         width = height = 24
         polygons = _rotated_bars(rng, 24)
     elif category == "touching rectangles":
@@ -127,8 +185,6 @@ def _depth_sort_case(rng: random.Random, feature: str | None = None) -> Case:
         ]
         if category == "mixed":
             polygons += _touching_rectangles(rng, width, height)
-    if feature == "near-equal depths":
-        polygons.append(_on_plane_of(rng, polygons[0], width, height))
     label = feature or category
     return Case(
         f"{label}: {len(polygons)} polygons",
@@ -142,19 +198,42 @@ def _plane_at(plane, x, y):
     return z0 + dzdx * (x - x0) + dzdy * (y - y0)
 
 
+def _extents(polygon, axis: int) -> tuple[float, float]:
+    return min(v[axis] for v in polygon), max(v[axis] for v in polygon)
+
+
 def _touch(s, other) -> bool:
     """Whether the extents of S and S' only touch on some axis."""
     for axis in (0, 1):
-        s_low, s_high = min(v[axis] for v in s), max(v[axis] for v in s)
-        low, high = min(v[axis] for v in other), max(v[axis] for v in other)
+        (s_low, s_high), (low, high) = _extents(s, axis), _extents(other, axis)
         if s_high == low or high == s_low:
             return True
     return False
 
 
-def _hair_from_plane(s, other, s_plane, other_plane, tolerance) -> bool:
-    """Whether a vertex of S lies in front of the plane of S', but within the tolerance."""
-    return any(-tolerance <= z - _plane_at(other_plane, x, y) < 0 for x, y, z in s)
+def _extents_overlap(s, other) -> bool:
+    """Whether the x extents of S and S' overlap, and so do their y extents (more than touch)."""
+    return all(
+        _extents(s, axis)[1] > _extents(other, axis)[0]
+        and _extents(other, axis)[1] > _extents(s, axis)[0]
+        for axis in (0, 1)
+    )
+
+
+def _in_front(feature: str):
+    """Whether, in some call whose extents overlap, the vertex of S nearest in front of the
+    plane of S' is in front of it within the tolerance (NEAR) or beyond it, by at most 16 times
+    the tolerance (BEYOND)."""
+
+    def test(case, reference) -> bool:
+        for (s, other, _, other_plane, tolerance), _ in reference.arguments:
+            front = max(_plane_at(other_plane, x, y) - z for x, y, z in s)
+            low, high = (0, tolerance) if feature == NEAR else (tolerance, 16 * tolerance)
+            if _extents_overlap(s, other) and low < front <= high:
+                return True
+        return False
+
+    return test
 
 
 def _result(name):
@@ -170,13 +249,12 @@ DEPTH_SORT_FEATURES = {
     "extents touch": lambda case, reference: any(
         _touch(args[0], args[1]) for args, _ in reference.arguments
     ),
-    "near-equal depths": lambda case, reference: any(
-        _hair_from_plane(*args) for args, _ in reference.arguments
-    ),
+    NEAR: _in_front(NEAR),
+    BEYOND: _in_front(BEYOND),
 }
 """Tests of the ambiguity tests' features: each result the step returns (each test passing
-first, and none), extents that only touch (apart, by ownership), and a vertex a hair in front
-of a plane, within the tolerance (on it, by the rule)."""
+first, and none), extents that only touch (apart, by ownership), and S in front of the plane of
+S' by a hair, within the tolerance (on it, by the rule) and just beyond it (in front)."""
 
 
 DEPTH_ORDER_SOLUTION = """\
@@ -223,6 +301,11 @@ def separated(polygon, other):
             return True
     return False
 """
+
+
+def _on_slope(corners: list, gap: float) -> list:
+    """Vertices `gap` in front of the plane z = 0.5 + x / 64 (exact at integer x)."""
+    return [[x, y, 0.5 + x / 64 - gap] for x, y in corners]
 
 
 def _variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
@@ -315,6 +398,19 @@ register(
                     "height": 10,
                 },
             ),
+            Case(
+                "two squares on the plane of a sloped one (z = 0.5 + x / 64), in front of it by "
+                "2^-32 (within the tolerance 1e-9: on it) and by 2^-28 = 3.7e-9 (beyond it)",
+                {
+                    "polygons": [
+                        _on_slope([(1, 1), (7, 1), (7, 9), (1, 9)], 0.0),
+                        _on_slope([(4, 0), (10, 0), (10, 4), (4, 4)], GAPS[NEAR]),
+                        _on_slope([(4, 6), (10, 6), (10, 10), (4, 10)], GAPS[BEYOND]),
+                    ],
+                    "width": 12,
+                    "height": 11,
+                },
+            ),
         ),
         generate=_depth_sort_case,
         **feature_tests(DEPTH_SORT_FEATURES),
@@ -342,6 +438,15 @@ register(
                     "z - plane(other_plane, x, y) >= -tolerance",
                     "z - plane(other_plane, x, y) >= 0",
                 ),
+            ),
+            _variant(
+                "fixed_epsilon",
+                "only the `tolerance` given counts as on a plane (1e-9, scaled with the "
+                "scene's depths): a vertex 3.7e-9 in front of the plane of S' is in front of "
+                "it, so S is not behind it; an epsilon of your own, such as 1e-6, takes it for "
+                "on the plane",
+                ("-tolerance for x, y, z in s", "-1e-6 for x, y, z in s"),
+                ("<= tolerance for x, y, z in other", "<= 1e-6 for x, y, z in other"),
             ),
             _variant(
                 "plane_tests_first",

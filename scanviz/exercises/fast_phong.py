@@ -223,10 +223,20 @@ def _normals_about(rng: random.Random, centre, tilt: float) -> list:
     ]
 
 
+LEVEL_CATEGORIES = {  # a level feature: the category whose triangles have it
+    "walk up": "narrow highlight",  # the level climbs by tens of entries toward the peak
+    "walk down": "highlight at vertex U",  # from level N at U, falling along U's span
+    "top of the table": "highlight at vertex U",  # cos φ = 1 exactly at U
+    "below the table": "past the terminator",  # a normal turned from the light: cos φ < cos φ_1
+    "level kept": "past the terminator",  # level 0 from sample to sample there
+}
+
+
 def _fast_phong_case(rng: random.Random, feature: str | None = None) -> Case:
-    """A shaded screen triangle; a category `feature` is that category, another one is drawn
-    until the feature test confirms it."""
-    category = feature if feature in CATEGORIES else rng.choice(CATEGORIES)
+    """A shaded screen triangle; a category `feature` is that category, a level feature one of
+    `LEVEL_CATEGORIES`, another one is drawn until the feature test confirms it."""
+    category = feature if feature in CATEGORIES else LEVEL_CATEGORIES.get(feature)
+    category = category or rng.choice(CATEGORIES)
     if feature == "about the centroid":
         category = rng.choice(("phong highlight", "blinn highlight", "narrow highlight"))
     specular = SPECULAR.get(category) or rng.choice(("phong", "blinn"))
@@ -387,8 +397,9 @@ register(
             "    float, possibly below cos φ_1, negative or above 1); start: the level of the\n"
             "    previous sample on this span (an int, 0 <= start <= N), or None at a span's\n"
             "    first sample.\n"
-            "    Return the level: the number of entries <= cos_phi (0 <= level <= N), by a\n"
-            '    search when start is None, else by walking from start."""\n'
+            "    Return the level, an int (119, not 119.0): the number of entries <= cos_phi\n"
+            "    (0 <= level <= N), by a search when start is None, else by walking from\n"
+            '    start."""\n'
             "    raise NotImplementedError\n"
         ),
         solution=LEVEL_SOLUTION,

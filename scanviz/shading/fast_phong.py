@@ -24,6 +24,7 @@ measured error.
 
 from __future__ import annotations
 
+import numbers
 from dataclasses import astuple, dataclass
 
 import numpy as np
@@ -155,6 +156,12 @@ def _shade_reference(quadratics, ys, xs, x0, y0, ambient, table, tracer, polygon
         # a span starts with a binary search, then steps from the previous sample's level
         start = None if direct else level
         level = find_level(table, cos_specular, start)
+        # a float level, even 119.0, indexes no table (the walk's next start is this level)
+        if isinstance(level, bool) or not isinstance(level, numbers.Integral):
+            raise TypeError(
+                f"step 'specular_level' must return an int level; got {level!r}, "
+                f"a {type(level).__name__}"
+            )
         comparisons = level_comparisons(len(table), level, start)
         lit = bool(values[k, COS_THETA] > 0)
         specular = float(level) if lit else 0.0

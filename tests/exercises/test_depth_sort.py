@@ -6,7 +6,7 @@ import scanviz.exercises.depth_sort  # noqa: F401 - registers the exercise (unti
 from scanviz import steps
 from scanviz.exercises.catalog import get
 from scanviz.exercises.core import hidden_cases, practice_cases, reference_outcome, score
-from scanviz.exercises.depth_sort import case_polygons
+from scanviz.exercises.depth_sort import BEYOND, GAPS, NEAR, case_polygons
 from scanviz.trace import Recorder
 from scanviz.visibility import solve, zbuffer
 
@@ -74,3 +74,37 @@ def test_touching_extents_diagnostic_names_the_pair_and_the_test():
     assert "yours differs at 1 of 1: pair S = 0, S' = 1" in text
     assert "first: yours 'no_overlap', reference 'x_extent'" in text
     assert text.endswith(variant.hint)
+
+
+def _front(args) -> float:
+    """How far the vertex of S nearest in front of the plane of S' is in front of it."""
+    s, _, _, (x0, y0, z0, dzdx, dzdy), _ = args
+    return max(z0 + dzdx * (x - x0) + dzdy * (y - y0) - z for x, y, z in s)
+
+
+def test_near_equal_depths_are_built_exactly_and_each_exposes_its_variant():
+    # The first call of each student's near-equal case has S in front of the plane of S' by
+    # exactly the gap (quarter pixels, dyadic depths): 2^-32 within the tolerance 1e-9, 2^-28
+    # beyond it; ignoring the tolerance fails the first, an epsilon of 1e-6 the second.
+    wrong = {NEAR: "no_tolerance", BEYOND: "fixed_epsilon"}
+    for student in ("", "ada", "bo"):
+        cases = hidden_cases(EXERCISE, "near", len(EXERCISE.features), student)
+        assert set(GAPS) <= {c.category for c in cases}
+        for case in [c for c in cases if c.category in GAPS]:
+            reference = reference_outcome(EXERCISE, case)
+            first, _ = reference.arguments[0]
+            assert _front(first) == GAPS[case.category] and first[4] == 1e-9, case.label
+            assert (reference.calls[0] == "s_behind_plane") == (case.category == NEAR)
+            variant = known_variant(EXERCISE, wrong[case.category])
+            assert not grade(EXERCISE, variant.source, [case], variants=False)[0].passed
+            assert grade(EXERCISE, EXERCISE.solution, [case], variants=False)[0].passed
+
+
+def test_a_fixed_epsilon_is_named_where_a_square_is_just_beyond_the_tolerance():
+    variant = known_variant(EXERCISE, "fixed_epsilon")
+    text = grade(EXERCISE, variant.source, EXERCISE.public[5:6])[0].describe()
+    assert "yours differs at 1 of 5: pair S = 2, S' = 0" in text
+    assert "first: yours 's_behind_plane', reference None" in text
+    assert text.endswith(variant.hint)
+    near = grade(EXERCISE, known_variant(EXERCISE, "no_tolerance").source, EXERCISE.public[5:6])
+    assert "first: yours 'other_in_front', reference 's_behind_plane'" in near[0].describe()

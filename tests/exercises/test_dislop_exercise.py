@@ -17,7 +17,7 @@ from scanviz import steps
 from scanviz.antialias import dislop_line
 from scanviz.antialias.columns import LINE_BRANCHES, band_row
 from scanviz.antialias.line import middle_column
-from scanviz.exercises.antialias import CATEGORIES, KINDS, middle_columns
+from scanviz.exercises.antialias import CATEGORIES, KINDS, THROUGH_CENTRES, middle_columns
 from scanviz.exercises.catalog import get
 from scanviz.exercises.core import (
     compile_answer,
@@ -34,7 +34,7 @@ from .support import grade, known_variant
 
 COLUMN = get("dislop_column")
 FOLDER = Path(__file__).parents[2] / "notebooks" / "exercises"
-SHALLOW, STEEP, DIAGONAL, HORIZONTAL, FALLING = COLUMN.public
+SHALLOW, STEEP, DIAGONAL, HORIZONTAL, FALLING, VERTICAL = COLUMN.public
 
 
 def _draw(inputs, trace=None):
@@ -108,6 +108,7 @@ def test_the_public_cases_take_every_branch_of_the_formula():
         {"three"},
         {"flat"},
         {"two", "three_triangle"},
+        {"flat"},
     ]
     assert set().union(*branches) == set(LINE_BRANCHES)
 
@@ -115,12 +116,14 @@ def test_the_public_cases_take_every_branch_of_the_formula():
 def test_the_public_cases_show_what_their_labels_say():
     slopes = [{e.slope for e in _middle(case)} for case in COLUMN.public]
     assert all(len(s) == 1 for s in slopes)  # one slope a line
-    assert [round(min(s), 12) for s in slopes] == [0.3, 0.85, 1.0, 0.0, 1 / 16]
+    assert [round(min(s), 12) for s in slopes] == [0.3, 0.85, 1.0, 0.0, 1 / 16, 0.0]
     assert {e.major for e in _middle(STEEP)} == {"y"}  # x and y swap
     assert {e.major for e in _middle(SHALLOW)} == {"x"}
     diagonal, horizontal = _middle(DIAGONAL), _middle(HORIZONTAL)
     assert {e.dxy for e in diagonal} == {0.5} and {e.dxy for e in horizontal} == {0.25}
     assert {(e.up, e.mid, e.low) for e in horizontal} == {(0.25, 0.75, 0.0)}
+    vertical = _middle(VERTICAL)
+    assert {(e.major, e.dxy, e.up, e.mid, e.low) for e in vertical} == {("y", 0.0, 0.0, 1.0, 0.0)}
     # Falling at 1/16 a column: dxy steps by 1/16 through 0, on both sides of it.
     falling = [Fraction(e.dxy) for e in _middle(FALLING)]
     assert falling == [Fraction(k, 16) for k in range(-6, 7)]
@@ -220,7 +223,7 @@ def dislop_column(m, dxy):
 def test_the_exact_band_passes_below_three_quarters_and_fails_above():
     # The exercise text says so: the reference is the printed formula, exact only up to 0.75.
     verdicts = grade(COLUMN, EXACT_BAND, COLUMN.public, variants=False)
-    assert [v.passed for v in verdicts] == [True, False, False, True, True]
+    assert [v.passed for v in verdicts] == [True, False, False, True, True, True]
     assert "**The reference is the printed formula**" in COLUMN.idea
 
 
@@ -292,6 +295,21 @@ def test_wrong_critical_value_or_thickness_shows_in_the_middle_pixel_at_45_degre
     assert text.endswith(known_variant(COLUMN, name).hint)
 
 
+def test_no_flat_branch_divides_by_zero_only_through_the_pixel_centres():
+    # Without the m == 0 branch a horizontal line off the centres still takes "two" (up = scv =
+    # ad), but through them ad = fcv = 0 falls to the triangle formula and its 1 / 2m.
+    variant = known_variant(COLUMN, "no_flat_branch")
+    verdicts = grade(COLUMN, variant.source, COLUMN.public)
+    assert [v.passed for v in verdicts] == [True, True, True, True, True, False]
+    assert verdicts[-1].error.startswith("ZeroDivisionError: float division by zero (in ")
+    assert verdicts[-1].variant == variant
+    for student in ("", "ada"):
+        hidden = hidden_cases(COLUMN, "features", 12, student)
+        through = [c for c in hidden if c.category in THROUGH_CENTRES[:2]]
+        failed = [v for v in grade(COLUMN, variant.source, through) if not v.passed]
+        assert len(failed) == 2 and all(v.error.startswith("ZeroDivisionError") for v in failed)
+
+
 def test_a_steep_line_names_its_calls_by_row():
     reference = reference_outcome(COLUMN, STEEP)
     places = [COLUMN.place(i, reference.trace) for i in range(len(reference.calls))]
@@ -313,7 +331,8 @@ def test_hidden_cases_come_from_the_secret_and_call_the_step():
     assert first == hidden_cases(COLUMN, "secret one", 4)
     assert first != hidden_cases(COLUMN, "secret two", 4)
     assert all(reference_outcome(COLUMN, case).calls for case in first)
-    assert {case.category for case in hidden_cases(COLUMN, "s", 25)} == set(CATEGORIES)
+    categories = {case.category for case in hidden_cases(COLUMN, "s", 25)}
+    assert categories == set(CATEGORIES) | set(COLUMN.features)  # a feature's case names it
 
 
 def test_generated_cases_are_what_their_category_names():
@@ -330,8 +349,16 @@ def test_generated_cases_are_what_their_category_names():
             "past 0.75": 0.75 < slope <= 1.0,
             "45 degrees": slope == 1.0 and len({e.dxy for e in middle}) == 1,
             "horizontal or vertical": slope == 0.0 and {e.branch for e in middle} == {"flat"},
+            "flat": slope == 0.0,
+            **{branch: branch in {e.branch for e in middle} for branch in ("two", "three")},
+            "three_triangle": "three_triangle" in {e.branch for e in middle},
+            THROUGH_CENTRES[0]: slope == 0.0 and p0y == p1y,
+            THROUGH_CENTRES[1]: slope == 0.0 and p0x == p1x,
+            THROUGH_CENTRES[2]: slope == 1.0,
         }
         assert expected[case.category], case.label
+        if case.category in THROUGH_CENTRES:  # every column, not only one
+            assert {e.dxy for e in middle} == {0.0}, case.label
     assert len(octants) >= 6  # the walk reflects every direction into the first octant
 
 

@@ -338,7 +338,20 @@ def test_a_wrong_return_type_is_an_error_of_the_run():
         "def specular_level(table, cos_phi, start):\n    return None\n", "specular_level"
     )
     outcome = run_case(LEVEL, answer, AT_U)
-    assert outcome.error is not None and outcome.error.startswith("TypeError")
+    assert outcome.error == (
+        "TypeError: step 'specular_level' must return an int level; got None, a NoneType"
+    )
+
+
+def test_an_integer_valued_float_level_is_told_it_is_not_an_int():
+    # Issue 22: a level of 119.0 scored 0 with numpy's "only integers ... are valid indices",
+    # raised in the answer's own walk when it got 119.0 back as start.
+    floats = LEVEL.solution.replace("        return low\n", "        return float(low)\n")
+    floats = floats.replace("    return level\n", "    return float(level)\n")
+    verdict = grade(LEVEL, floats, [AT_U])[0]
+    text = verdict.describe()
+    assert "must return an int level; got 119.0, a float" in text
+    assert "yours 119.0 (a float: an int is asked for), reference 119" in text
 
 
 @pytest.mark.parametrize("exercise", BOTH, ids=lambda e: e.id)

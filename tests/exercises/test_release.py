@@ -95,6 +95,8 @@ def test_docs_list_every_exercise_variant_and_step():
         assert row, f"docs/exercises.md has no catalog row for {exercise.id!r}"
         for variant in exercise.variants:
             assert f"`{variant.name}`" in row, (exercise.id, variant.name)
+        features = f"| `{exercise.id}` | " + "; ".join(exercise.features) + " |"
+        assert features in text, f"docs/exercises.md: the features of {exercise.id!r} changed"
     for step in steps.table():
         assert f"| `{step.name}` | `{step.module.removeprefix('scanviz.')}` |" in text, step.name
 

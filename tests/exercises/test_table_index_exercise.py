@@ -12,7 +12,13 @@ import pytest
 from scanviz import steps
 from scanviz.antialias.post import post_antialias
 from scanviz.antialias.tables import column_indices, line_table, table_indices
-from scanviz.exercises.antialias import POST_CATEGORIES, POST_KINDS, post_table
+from scanviz.exercises.antialias import (
+    HALF_OFF,
+    POST_CATEGORIES,
+    POST_KINDS,
+    THROUGH_CENTRES,
+    post_table,
+)
 from scanviz.exercises.catalog import get
 from scanviz.exercises.core import (
     compile_answer,
@@ -176,6 +182,16 @@ def test_dxy_not_shifted_is_refused_by_the_loop_with_the_indices():
     assert "j: yours 0, reference 25" in text  # dxy = 0 read row 0 (dxy = -1/2)
 
 
+def test_j_wraps_is_wrong_exactly_where_the_line_is_half_a_pixel_off_the_centres():
+    verdict, text = _describe("j_wraps", LEVEL)
+    assert "j: yours 0, reference 50" in text
+    assert len(verdict.wrong_calls) == verdict.calls_total == len(_looked_up(LEVEL))
+    assert verdict.result is not None  # the areas of dxy = -1/2 land on the wrong pixels
+    assert text.endswith(known_variant(INDEX, "j_wraps").hint)
+    fig = grade(INDEX, known_variant(INDEX, "j_wraps").source, [FIG_5_1])[0]
+    assert fig.passed  # no j of 50 there
+
+
 def test_truncated_differs_where_the_fraction_is_past_a_half():
     verdict, _ = _describe("truncated", FIG_5_1)
     assert verdict.first_call.path == "[0]"  # 33.7 divisions: 33 instead of 34
@@ -196,7 +212,8 @@ def test_hidden_cases_come_from_the_secret_and_call_the_step():
     assert first == hidden_cases(INDEX, "secret one", 4)
     assert first != hidden_cases(INDEX, "secret two", 4)
     assert all(reference_outcome(INDEX, case).calls for case in first)
-    assert {case.category for case in hidden_cases(INDEX, "s", 25)} == set(POST_CATEGORIES)
+    categories = {case.category for case in hidden_cases(INDEX, "s", 25)}
+    assert categories == set(POST_CATEGORIES) | set(INDEX.features)  # a feature's case names it
 
 
 def test_generated_cases_are_what_their_category_names():
@@ -204,9 +221,13 @@ def test_generated_cases_are_what_their_category_names():
         looked_up = _looked_up(case)
         assert looked_up, case.label
         assert (case.inputs["kind"] == "edge") == (case.category == "polygon edges")
-        slopes = {e.i for e in looked_up}
-        if case.category == "ties":
+        slopes, distances = {e.i for e in looked_up}, {e.j for e in looked_up}
+        if case.category in ("ties", "exact halves"):
             assert slopes <= {13, 38}, case.label
+        if case.category in THROUGH_CENTRES:  # i = 0 or 50 and j = 25 in every column
+            assert (slopes, distances) == ({50 if "45°" in case.category else 0}, {25}), case.label
+        if case.category == HALF_OFF:
+            assert distances == {50} and slopes <= {0, 50}, case.label
         if case.category == "horizontal or 45 degrees":
             assert slopes <= {0, 50}, case.label
         if case.category == "steep lines":
