@@ -60,6 +60,7 @@ class JailUnavailable(OSError):
 
 JAILS = ("bwrap", "user", "none")
 NOBODY = 65534  # the unprivileged user of the "user" jail (and the uid inside bubblewrap)
+AS_NOBODY = {"user": NOBODY, "group": NOBODY, "extra_groups": []}  # Popen's arguments for it
 
 
 @functools.cache
@@ -234,9 +235,7 @@ def process(jail: str, limits: dict, folder: str) -> dict:
         "args": plain_command(limits, copy_numpy=True),
         "cwd": folder,
         "env": environment,
-        "user": NOBODY,
-        "group": NOBODY,
-        "extra_groups": [],
+        **AS_NOBODY,
     }
     return arguments
 
@@ -296,11 +295,9 @@ def _user_unavailable() -> str | None:
             capture_output=True,
             timeout=PROBE_SECONDS,
             check=False,
-            user=NOBODY,
-            group=NOBODY,
-            extra_groups=[],
             cwd="/",
             env={**ENVIRONMENT, "SCANVIZ_RUNTIME": str(root)},
+            **AS_NOBODY,
         )
     except (OSError, subprocess.SubprocessError) as error:
         return f"the user nobody cannot run Python here: {error}"
@@ -327,13 +324,7 @@ def _probe_failure(done: subprocess.CompletedProcess, what: str) -> str | None:
 def readable_by_nobody(path: str | os.PathLike) -> bool:
     """Whether the user nobody could read `path` (the kernel is asked, with test(1) as nobody)."""
     done = subprocess.run(
-        ["test", "-r", os.fspath(path)],
-        timeout=PROBE_SECONDS,
-        check=False,
-        user=NOBODY,
-        group=NOBODY,
-        extra_groups=[],
-        cwd="/",
+        ["test", "-r", os.fspath(path)], timeout=PROBE_SECONDS, check=False, cwd="/", **AS_NOBODY
     )
     return done.returncode == 0
 
