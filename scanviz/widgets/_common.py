@@ -67,17 +67,53 @@ def swatch(color: Sequence[float]) -> str:
     )
 
 
-WIDEST = 9.5  # inches: the widest figure a notebook shows whole (the canvas beside its toolbar)
+# The widest figure a notebook shows whole: JupyterLab in a 1280 px window with the
+# file browser open leaves an output area of about 880 px (figures are drawn at 100 dpi).
+WIDEST = 8.4  # inches
+PER_ROW = 3  # panels side by side; more wrap into rows
 
 
-def new_figure(ncols: int, *, width: float = 9.0, height: float = 3.2, **subplot_kw):
-    """(figure, axes) made without displaying it (pyplot, so ipympl gives its canvas widget)."""
+def new_figure(
+    ncols: int, *, width: float = 8.0, height: float = 3.2, per_row: int = PER_ROW, **subplot_kw
+):
+    """(figure, axes) made without displaying it (pyplot, so ipympl gives its canvas widget).
+
+    The figure is at most `WIDEST` wide; more than `per_row` panels wrap into
+    rows of `height` each (unless ``gridspec_kw`` sets ``width_ratios``). `axes` is the list of the `ncols` panels in reading
+    order. Under ipympl the canvas has no "Figure N" header, no toolbar over
+    the labels and no resize handle.
+
+    >>> fig, axes = new_figure(5, width=20, height=2)
+    >>> len(axes), fig.get_size_inches().tolist()
+    (5, [8.4, 4.0])
+    """
+    import math
+
     import matplotlib.pyplot as plt
 
+    if "width_ratios" in subplot_kw.get("gridspec_kw", {}):
+        per_row = ncols  # panels of set widths stay in one row
+    per_row = max(1, per_row)
+    rows, columns = math.ceil(ncols / per_row), min(ncols, per_row)
     with plt.ioff():
-        fig, axes = plt.subplots(1, ncols, figsize=(width, height), squeeze=False, **subplot_kw)
-    fig.canvas.header_visible = False
-    return fig, list(axes[0])
+        fig, grid = plt.subplots(
+            rows, columns, figsize=(min(width, WIDEST), height * rows), squeeze=False, **subplot_kw
+        )
+    axes = list(grid.ravel())
+    for spare in axes[ncols:]:
+        spare.remove()
+    quiet_canvas(fig)
+    return fig, axes[:ncols]
+
+
+def quiet_canvas(figure) -> None:
+    """No header, toolbar or resize handle on an ipympl canvas (nothing on other backends)."""
+    canvas = figure.canvas
+    if isinstance(canvas, widgets.DOMWidget):
+        canvas.header_visible = False
+        canvas.toolbar_visible = False
+        canvas.footer_visible = False
+        canvas.resizable = False
 
 
 def parse_pixel(text: str) -> tuple[int, int]:

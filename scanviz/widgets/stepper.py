@@ -37,6 +37,17 @@ class View(Protocol):
         """Update in place to the state after the first `step` events."""
 
 
+def narration_of(view: View, step: int) -> str:
+    """What `view` says of `step`: its ``narrate(step)`` sentence, or "" if it has none.
+
+    A view may define ``narrate(step) -> str``: one plain sentence saying what
+    event `step` did and why (step 0 is the start). The stepper shows the
+    first view's sentence under its controls.
+    """
+    narrate = getattr(view, "narrate", None)
+    return narrate(step) if callable(narrate) else ""
+
+
 def figure_widget(figure):
     """The widget that shows a matplotlib figure.
 
@@ -107,6 +118,9 @@ def coverage_image(axes, covered: np.ndarray, *, alpha: float | None = None):
     return image
 
 
+SPEEDS = {"slow": 900, "normal": 300, "fast": 80}  # milliseconds between steps when playing
+
+
 class Stepper:
     """Step through a trace with Play, a slider and Prev/Next; every view shows the step.
 
@@ -133,6 +147,11 @@ class Stepper:
         One step back or on; disabled at the ends.
     label : ipywidgets.Label
         ``"step k / n: <kind of event k>"`` (``start`` at step 0).
+    narration : ipywidgets.HTML
+        The step in one plain sentence (the first view's ``narrate(step)``;
+        the event's kind in words when no view narrates).
+    speed : ipywidgets.Dropdown
+        Play's pace: slow, normal or fast (milliseconds between steps).
     widget : ipywidgets.VBox
         Everything; displaying the stepper displays this.
 
@@ -153,6 +172,9 @@ class Stepper:
     >>> stepper.slider.value = 8
     >>> stepper.model.step, stepper.label.value
     (8, 'step 8 / 8: span')
+    >>> stepper.speed.value = SPEEDS["fast"]
+    >>> stepper.play.interval
+    80
     >>> stepper  # doctest: +SKIP
     """
 
@@ -172,7 +194,7 @@ class Stepper:
         steps = len(trace)
         if steps > self.MAX_STEPS:
             self.play = self.slider = self.link = self.label = None
-            self.prev_button = self.next_button = None
+            self.prev_button = self.next_button = self.narration = self.speed = None
             self.widget = widgets.VBox([*heading, widgets.HTML(_too_long_message(steps))])
             return
         self.play = widgets.Play(min=0, max=steps, step=1, interval=interval, description="play")
@@ -181,13 +203,25 @@ class Stepper:
         self.prev_button = widgets.Button(description="◀ prev", layout={"width": "auto"})
         self.next_button = widgets.Button(description="next ▶", layout={"width": "auto"})
         self.label = widgets.Label()
+        self.narration = widgets.HTML(layout={"min_height": "1.6em"})
+        self.speed = widgets.Dropdown(
+            options=list(SPEEDS.items()),
+            value=interval if interval in SPEEDS.values() else SPEEDS["normal"],
+            description="speed",
+            layout={"width": "11em"},
+            style={"description_width": "3.5em"},
+        )
+        self.speed.observe(lambda change: setattr(self.play, "interval", change["new"]), "value")
         self.prev_button.on_click(lambda _: self._move(-1))
         self.next_button.on_click(lambda _: self._move(+1))
         self.slider.observe(lambda change: self.model.set_step(change["new"]), names="value")
         self.model.observe(self._show)
-        controls = widgets.HBox([self.play, self.prev_button, self.slider, self.next_button])
+        controls = widgets.HBox(
+            [self.play, self.prev_button, self.slider, self.next_button, self.speed],
+            layout={"flex_flow": "row wrap"},
+        )
         self.widget = widgets.VBox(
-            [*heading, controls, self.label, *(view.widget for view in self.views)]
+            [*heading, controls, self.label, self.narration, *(view.widget for view in self.views)]
         )
         self._show(0)
 
@@ -198,6 +232,10 @@ class Stepper:
         self.slider.value = step  # when the model was moved directly
         kind = self.model.trace[step - 1].kind if step else "start"
         self.label.value = f"step {step} / {len(self.model)}: {kind}"
+        sentence = next(filter(None, (narration_of(view, step) for view in self.views)), "")
+        if not sentence:
+            sentence = "The start: nothing has happened yet." if not step else kind.replace("_", " ")
+        self.narration.value = f"<span style='font-size:13px'>{html.escape(sentence)}</span>"
         self.prev_button.disabled = step == 0
         self.next_button.disabled = step == len(self.model)
         for view in self.views:
