@@ -7,11 +7,9 @@ STAMP := $(VENV)/.installed-stamp
 .PHONY: lab test lint bench clean chromium jail
 
 # numba's on-disk cache is keyed by each kernel's own file, not by the modules it calls:
-# drop every cached kernel whenever any package source changes.
-NUMBA_STAMP := $(VENV)/.numba-cache-stamp
-$(NUMBA_STAMP): $(shell find scanviz -name '*.py') | $(STAMP)
-	find scanviz -name '*.nbi' -delete -o -name '*.nbc' -delete
-	touch $@
+# `scanviz warmup` drops the kernels of changed files and of their importers (nothing else)
+# and compiles what is missing, with a progress bar, so no lesson or test waits in silence.
+WARMUP := $(BIN)/python -m scanviz warmup
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -25,7 +23,8 @@ LAB_ENV := JUPYTER_CONFIG_PATH=$(CURDIR)/.jupyter$${JUPYTER_CONFIG_PATH:+:$$JUPY
 # Jupyter refuses to start as root without --allow-root (containers, CI machines): pass it only then.
 ALLOW_ROOT := $(if $(filter 0,$(shell id -u)),--allow-root,)
 
-lab: $(STAMP) $(NUMBA_STAMP)
+lab: $(STAMP)
+	$(WARMUP)
 	cd notebooks && $(LAB_ENV) ../$(BIN)/jupyter lab $(ALLOW_ROOT) 00_tour.ipynb
 
 # Debian's chromium for tests/browser (Playwright drives it; no browser is downloaded).
@@ -43,12 +42,14 @@ jail:
 lint: $(STAMP)
 	$(BIN)/ruff check scanviz tests
 
-test: lint $(NUMBA_STAMP) chromium jail
+test: lint chromium jail
+	$(WARMUP)
 	$(BIN)/python -m scanviz conformance
 	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
 # Every bench suite into one report (docs/benchmarks.md); its plots into bench-plots/.
-bench: $(STAMP) $(NUMBA_STAMP)
+bench: $(STAMP)
+	$(WARMUP)
 	$(BIN)/python -m scanviz bench all --report bench-report.md --plot-dir bench-plots
 
 clean:

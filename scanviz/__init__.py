@@ -18,6 +18,9 @@ from .raster import (
     triangle_samples,
 )
 from .trace import Recorder, Trace, Tracer
+from .warmup import announce_compiling
+
+announce_compiling()  # a one-line note, not silence, when a kernel compiles
 
 __all__ = [
     "Polygon",

@@ -907,8 +907,19 @@ def build_parser() -> argparse.ArgumentParser:
     )
     conformance.add_argument("--seed", type=_integer, default=0, metavar="S", help="fuzz seed")
     conformance.set_defaults(run=_cmd_conformance)
+    warmup = commands.add_parser(
+        "warmup", help="compile every numba kernel now (make lab and make test do it once)"
+    )
+    warmup.set_defaults(run=_cmd_warmup)
     _add_exercise_commands(commands)
     return parser
+
+
+def _cmd_warmup(args: argparse.Namespace) -> int:
+    from .warmup import warmup
+
+    print(f"scanviz warmup: kernels ready in {warmup():.0f} s")
+    return 0
 
 
 def main(argv: list[str] | None = None) -> int:
