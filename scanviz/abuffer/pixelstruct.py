@@ -24,6 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .. import steps
+from ..trace.display import RichDisplay
 from ..trace.events import (
     CoverageBlended,
     FragmentInserted,
@@ -40,7 +41,7 @@ EMPTY, SIMPLE, LIST = "empty", "simple", "list"
 
 
 @dataclass
-class ABufferStats:
+class ABufferStats(RichDisplay):
     """What one resolve did.
 
     ``pixels_*`` count the pixelstructs at the end by kind. Every fragment

@@ -25,6 +25,7 @@ import numpy as np
 from ..conventions import check_choice, short_repr
 from ..surfaces import GridSurface, View, floating_perimeter
 from ..surfaces.perimeter import PerimeterResult, visible_runs
+from ..trace.display import RichDisplay
 from .line import dislop_line
 
 LINE_METHODS = ("dislop", "post", "aliased")
@@ -34,7 +35,7 @@ SIDE_STEP = 1e-6  # how far beside an outline piece's midpoint its two sides are
 
 
 @dataclass(frozen=True)
-class LineStats:
+class LineStats(RichDisplay):
     """segments drawn, ``points`` of them single raster points widened to a unit
     segment, ``pixels`` touched (coverage > 0), and seconds in the FPA and in drawing."""
 
@@ -285,7 +286,7 @@ def _level(name: str, value: object) -> float:
 
 
 @dataclass(frozen=True)
-class SurfaceStats:
+class SurfaceStats(RichDisplay):
     """``boundary`` pixels blended on the outline, ``inner`` pixels box-filtered (case b),
     outline ``pieces``, and seconds in the FPA, the outline and the blending."""
 

@@ -64,7 +64,23 @@ class CheckReport:
         return "\n".join(lines)
 
     def _repr_html_(self) -> str:
-        return f"<pre style='white-space:pre-wrap'>{html.escape(str(self))}</pre>"
+        """The headline, the first failing case in full (tables, the raster diff on its grid),
+        the others in a line each."""
+        from .display import verdict_html
+
+        parts = [f"<p><b>{html.escape(self.headline())}</b></p>"]
+        failing = [c for c in self.cases if not c.verdict.passed]
+        for index, run in enumerate(failing):
+            if index == 0:
+                parts.append(
+                    verdict_html(run.verdict, run.yours, run.reference, self.exercise.rtol)
+                )
+            else:
+                parts.append(f"<div>{html.escape(run.verdict.summary())}</div>")
+        if failing:
+            rerun = f'check("{self.exercise.id}", case={failing[0].verdict.case.label!r})'
+            parts.append(f"<p>rerun just this case: <code>{html.escape(rerun)}</code></p>")
+        return "<div>" + "".join(parts) + "</div>"
 
     def _ipython_display_(self) -> None:
         from IPython.display import HTML, display

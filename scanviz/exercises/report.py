@@ -54,6 +54,8 @@ import numpy as np
 
 from ..limits import read_bounded
 from .catalog import exercises
+from .compare import RasterDifference
+from .display import raster_html
 from .key import CourseKey
 from .results import STATUSES, ExerciseGrade, StudentGrade
 from .verdict import Verdict
@@ -66,7 +68,7 @@ _UNSAFE = re.compile(r"[^A-Za-z0-9._-]")
 _STYLE = (
     "body{font-family:system-ui,sans-serif;max-width:60em;margin:1em auto;padding:0 1em}"
     "pre{background:#f6f6f6;padding:.5em;overflow-x:auto;white-space:pre-wrap}"
-    "img.raster{image-rendering:pixelated;border:1px solid #ccc}"
+    "img.raster{max-width:100%}"
     "table{border-collapse:collapse}td,th{padding:2px 8px;text-align:left;vertical-align:top}"
     ".passed{color:#2e7d32}.failed{color:#c62828}"
 )
@@ -104,26 +106,18 @@ def points(value: float) -> str:
 
 @dataclass(frozen=True)
 class CaseReport:
-    """One case as a report shows it: its text and, if shown, its raster diff image."""
+    """One case as a report shows it: its text and, if shown, its raster diff."""
 
     verdict: Verdict
     text: str
-    image: np.ndarray | None  # (H, W, 3) float, row 0 at the top
+    raster: RasterDifference | None  # drawn on its pixel grid with the case's outline
 
 
 def case_report(verdict: Verdict, reveal: bool) -> CaseReport:
     """How `verdict` is shown: in full, or redacted for a hidden case if not `reveal`."""
     if verdict.hidden and not reveal and not verdict.passed:
         return CaseReport(verdict, verdict.describe(reveal=False), None)
-    image = verdict.raster.image() if verdict.raster is not None else None
-    return CaseReport(verdict, verdict.describe(reveal=reveal), image)
-
-
-def png_data_uri(image: np.ndarray) -> str:
-    """A ``data:image/png;base64,...`` URI of an (H, W, 3) diff image."""
-    from ..widgets.exercise import raster_png
-
-    return "data:image/png;base64," + base64.b64encode(raster_png(image)).decode("ascii")
+    return CaseReport(verdict, verdict.describe(reveal=reveal), verdict.raster)
 
 
 # --- one exercise ---------------------------------------------------------------------------
@@ -177,11 +171,8 @@ def _exercise_html(grade: ExerciseGrade, title: str, reveal: bool) -> str:
     for verdict in grade.verdicts:
         report = case_report(verdict, reveal)
         parts.append(f"<pre>{html.escape(report.text)}</pre>")
-        if report.image is not None:
-            parts.append(
-                f"<p><img class='raster' alt='raster diff: grey matched, red extra, blue missing'"
-                f" src='{png_data_uri(report.image)}'></p>"
-            )
+        if report.raster is not None:
+            parts.append(f"<p>{raster_html(report.raster, verdict.case.inputs)}</p>")
     if grade.output:
         parts.append(f"<p>{PRINTED}</p><pre>{html.escape(grade.output)}</pre>")
     parts.append("</section>")
@@ -244,8 +235,8 @@ def feedback_html(student: StudentGrade, reveal: bool) -> str:
         f"<h1>Feedback for {html.escape(student.student)}</h1>",
         f"<p>{html.escape(_student_headline(student))}</p>",
         _overview_html(student),
-        "<p>Raster images: grey matched, red extra (yours only), blue missing (reference only)."
-        "</p>",
+        "<p>Raster images: grey matched, vermillion + extra (yours only), blue − missing "
+        "(reference only); the case's outline in black.</p>",
         *(_exercise_html(g, titles.get(g.exercise, g.exercise), reveal) for g in student.grades),
     ]
     return _page(f"Feedback for {student.student}", "\n".join(body))

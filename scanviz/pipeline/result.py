@@ -9,6 +9,7 @@ import numpy as np
 
 from ..scene.model import Light, Material, Scene
 from ..trace import Trace
+from ..trace.display import RichDisplay
 
 
 @dataclass(frozen=True)
@@ -35,7 +36,7 @@ class RenderPlan:
 
 
 @dataclass
-class RenderStats:
+class RenderStats(RichDisplay):
     """What ran: polygon counts through the stages, and the z-buffer's work."""
 
     objects: int = 0

@@ -37,6 +37,7 @@ import numpy as np
 
 from .. import steps
 from ..limits import check_memory, current_memory_limit
+from ..trace.display import RichDisplay
 from ..trace.events import (
     AetEntry,
     AetSorted,
@@ -142,7 +143,7 @@ class ActiveEdge:
 
 
 @dataclass
-class ScanStats:
+class ScanStats(RichDisplay):
     """What one scan conversion did."""
 
     edges: int = 0

@@ -38,6 +38,7 @@ from numba import njit
 from ..conventions import check_raster_size, short_repr
 from ..raster.api import as_tracer
 from ..raster.lines import paint_lines
+from ..trace.display import RichDisplay
 from ..trace.events import HorizonColumn, HorizonCurve
 from .grid import GridSurface
 from .view import View
@@ -48,7 +49,7 @@ FLAG_PAIRS = tuple((p, c) for p in (1, 0, -1) for c in (1, 0, -1))
 
 
 @dataclass(frozen=True)
-class HorizonStats:
+class HorizonStats(RichDisplay):
     """What the floating horizon did.
 
     ``curves`` and ``pieces`` processed, screen ``columns`` visited (over all

@@ -50,6 +50,7 @@ from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..scene import Scene
 from ..trace import Recorder, Trace
+from ..trace.display import RichDisplay
 from ..trace.events import (
     FacetsEnumerated,
     GridEdge,
@@ -70,7 +71,7 @@ _BYTES_PER_EDGE_POINT = 64  # coordinates, flags, the facet and edge index of ea
 
 
 @dataclass(frozen=True)
-class PerimeterStats:
+class PerimeterStats(RichDisplay):
     """What the floating perimeter did.
 
     Lines mode: ``facets``, ``edges`` processed, raster ``points`` tested and
@@ -215,7 +216,7 @@ class PerimeterResult:
 
 
 @dataclass(frozen=True)
-class FacetOrderStats:
+class FacetOrderStats(RichDisplay):
     """polygons: triangles in the order; left_out: those the z-buffer never scans (edge-on)."""
 
     polygons: int

@@ -14,13 +14,16 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import ClassVar
 
+from .display import RichDisplay  # tables in Jupyter, readable print
 from .schema import validate
 
 EVENT_TYPES: dict[str, type[Event]] = {}
 
 
-class Record:
+class Record(RichDisplay):
     """Base of trace records and events: field types are checked against the annotations.
+
+    Jupyter shows a record as a table of its fields (`scanviz.trace.display`).
 
     >>> Span(polygon="x", y=0, x_start=0, x_end=1, winding=1)
     Traceback (most recent call last):
@@ -341,6 +344,29 @@ class FaceCulled(Event):
     view: tuple[float, float, float]
     dot: float
     culled: bool
+
+
+@dataclass(frozen=True)
+class PolygonsTransformed(Event):
+    """The whole scene at stop `stage` of the viewing pipeline (`scanviz.pipeline.viewing`).
+
+    ``stage`` is "world", "eye", "clip", "ndc" or "display"; ``matrix`` the
+    4x4 matrix that took the previous stop here, row-major (16 floats), or
+    None (the input "world", the divide "ndc"). ``objects[k]`` is the scene
+    object of polygon k and ``polygons[k]`` its vertices in this space: every
+    input polygon up to "clip"; in "ndc" and "display" the polygons as clipped,
+    empty for those culled or clipped away. ``volume`` holds the view
+    volume's 8 corners here (near face, then far face, each counter-clockwise
+    from left-bottom); ``eye`` the eye's position, None where it has none.
+    """
+
+    kind: ClassVar[str] = "polygons_transformed"
+    stage: str
+    matrix: tuple[float, ...] | None
+    objects: tuple[int, ...]
+    polygons: tuple[tuple[tuple[float, ...], ...], ...]
+    volume: tuple[tuple[float, ...], ...]
+    eye: tuple[float, float, float] | None
 
 
 # --- interpolation and the z-buffer (scanviz.raster.interpolate, scanviz.visibility) -----

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..conventions import check_raster_size
 from ..limits import check_memory
+from .display import trace_html
 from .events import EVENT_TYPES, Event
 from .schema import shown
 
@@ -173,6 +174,10 @@ class Trace(Sequence[Event]):
         for event in self._events:
             counts[event.kind] = counts.get(event.kind, 0) + 1
         return f"Trace({len(self)} events: {counts})"
+
+    def _repr_html_(self) -> str:
+        """Jupyter's view: the events per kind and the first few (`display.trace_html`)."""
+        return trace_html(self)
 
     def of_kind(self, *kinds: str) -> Trace:
         return self.filter(kinds)

@@ -51,6 +51,7 @@ import numpy as np
 from .. import steps
 from ..conventions import check_choice
 from ..limits import check_memory
+from ..trace.display import RichDisplay
 from ..trace.events import BspCandidate, BspNode, BspVisited, PolygonSplit
 from .interface import Decision, Visibility, piece_record, register
 from .surfaces import BEHIND, FRONT, ON, STRADDLES, Piece, Surfaces
@@ -99,7 +100,7 @@ class BspTree:
 
 
 @dataclass
-class BspStats:
+class BspStats(RichDisplay):
     """nodes, splits (straddling pieces cut), depth (the tree's height), pieces painted,
     left_out (polygons seen edge-on or off the raster)."""
 

@@ -64,6 +64,7 @@ from typing import ClassVar
 import numpy as np
 
 from .. import steps
+from ..trace.display import RichDisplay
 from ..trace.events import AmbiguityTest, PairTested, PiecesSwapped, PolygonSplit, PolygonsSorted
 from .interface import Decision, Visibility, piece_record, register
 from .painter import depth_order
@@ -78,7 +79,7 @@ _EXTENTS = ((2, True), (2, False), (0, True), (0, False), (1, True), (1, False))
 
 
 @dataclass
-class DepthSortStats:
+class DepthSortStats(RichDisplay):
     """Counts of one depth sort.
 
     ``tests`` counts each test run by name (minimax included), ``settled``

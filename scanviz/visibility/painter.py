@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from ..conventions import check_choice
+from ..trace.display import RichDisplay
 from ..trace.events import PolygonsSorted
 from .interface import Decision, Visibility, piece_record, register
 from .surfaces import Piece, Surfaces
@@ -28,7 +29,7 @@ KEYS = ("zmin", "zmax", "centroid")
 
 
 @dataclass
-class PainterStats:
+class PainterStats(RichDisplay):
     """polygons: sorted and painted (edge-on and off-raster ones are left out)."""
 
     polygons: int = 0

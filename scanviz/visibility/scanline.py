@@ -47,6 +47,7 @@ import numpy as np
 from .. import steps
 from ..raster.fixed import SnappedPolygon
 from ..raster.scanline import bucketed_edge_table
+from ..trace.display import RichDisplay
 from ..trace.events import ActiveSurfaces, SurfaceRecord, SurfaceTableBuilt, VisibleSpan
 from . import scanline_kernels as kernels
 from .interface import Decision, Visibility, register
@@ -54,7 +55,7 @@ from .surfaces import Surfaces
 
 
 @dataclass
-class ScanlineStats:
+class ScanlineStats(RichDisplay):
     """What the scanline algorithm did.
 
     rows: scanlines with a nonempty AST; spans: spans on them (background

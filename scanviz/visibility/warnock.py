@@ -84,6 +84,7 @@ from ..limits import check_memory, current_memory_limit
 from ..raster.api import SPAN_BUFFER_BYTES, paint_spans, scan_snapped
 from ..raster.fixed import SnappedPolygon
 from ..raster.interpolate import plane_depth
+from ..trace.display import RichDisplay
 from ..trace.events import AreaClassified
 from . import warnock_kernels as kernels
 from .interface import Decision, Visibility, register
@@ -94,7 +95,7 @@ CASES = ("empty", "surrounding", "single", "subdivide", "pixel")  # by code, as 
 
 
 @dataclass
-class WarnockStats:
+class WarnockStats(RichDisplay):
     """Areas visited, per case; ``depth`` the deepest level (the raster is level 0).
 
     ``pixel`` counts the one-sample areas decided by depth at their sample;

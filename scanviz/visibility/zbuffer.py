@@ -41,6 +41,7 @@ from ..raster.interpolate import (
     vertex_channels,
 )
 from ..trace import Recorder, Trace
+from ..trace.display import RichDisplay
 from ..trace.events import DepthTest
 from . import kernels
 
@@ -227,7 +228,7 @@ def _check_offsets(offsets: object, count: int) -> np.ndarray:
 
 
 @dataclass
-class ZBufferStats:
+class ZBufferStats(RichDisplay):
     """What one z-buffer pass did.
 
     ``polygons_drawn`` covered at least one sample; ``polygons_skipped`` were

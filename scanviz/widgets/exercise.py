@@ -3,17 +3,15 @@
 from __future__ import annotations
 
 import html
-import io
 
 import ipywidgets as widgets
-import numpy as np
 
-from ..exercises.compare import MISSING, aligned, first_difference, show, where
+from ..exercises.compare import MISSING, aligned, first_difference
 from ..exercises.core import Outcome
+from ..exercises.display import comparison_html, event_fields, event_title
 from ..exercises.verdict import Verdict
 
 WINDOW = 4  # events shown before and after the current one
-EVENT_TEXT = 400  # characters of one event's fields shown
 
 
 def _rows(yours: list, reference: list, rtol: float) -> tuple[list, list, list[int]]:
@@ -24,28 +22,15 @@ def _rows(yours: list, reference: list, rtol: float) -> tuple[list, list, list[i
 
 
 def _event_row(index: int, event: object, current: bool, differs: bool) -> str:
-    if event is MISSING:
-        text, place, kind = "(no event)", "", ""
-    else:
-        kind, place = event.kind, where(event)
-        text = show(event, EVENT_TEXT)
+    """One event on a line: its number, kind and place, then its fields as a student reads them."""
+    text = "" if event is MISSING else event_fields(event)
     style = "background:#ffe9a8;" if current else ""
     style += "border-left:4px solid #c62828;" if differs else "border-left:4px solid transparent;"
-    head = f"<b>{index + 1}. {html.escape(kind)}</b> {html.escape(place)}"
+    head = f"<b>{index + 1}. {html.escape(event_title(event))}</b>"
     return (
-        f"<div style='{style}padding:2px 6px;font-family:monospace;font-size:12px'>"
-        f"{head}<br>{html.escape(text)}</div>"
+        f"<div style='{style}padding:2px 6px;font-size:12px'>"
+        f"{head}<br><span style='font-family:monospace'>{html.escape(text)}</span></div>"
     )
-
-
-def raster_png(image: np.ndarray) -> bytes:
-    """PNG bytes of an (H, W, 3) diff image, each sample 12 screen pixels wide."""
-    import matplotlib.image
-
-    scaled = np.repeat(np.repeat(image, 12, axis=0), 12, axis=1)
-    buffer = io.BytesIO()
-    matplotlib.image.imsave(buffer, scaled, format="png")
-    return buffer.getvalue()
 
 
 class TraceComparison:
@@ -110,15 +95,9 @@ class TraceComparison:
             ),
             widgets.HBox([self.yours_pane, self.reference_pane]),
         ]
-        if verdict.raster is not None:
-            parts.append(
-                widgets.HTML(
-                    "samples: <span style='color:#8c8c8c'>■ matched</span> "
-                    "<span style='color:#d92626'>■ extra (yours only)</span> "
-                    "<span style='color:#2659e6'>■ missing (reference only)</span>"
-                )
-            )
-            parts.append(widgets.Image(value=raster_png(verdict.raster.image()), format="png"))
+        self.rtol = rtol
+        self.detail_pane = widgets.HTML()  # the current row's two events, field by field
+        parts.append(self.detail_pane)
         self.widget = widgets.VBox(parts)
         self._show(start)
 
@@ -141,6 +120,13 @@ class TraceComparison:
     def _show(self, index: int) -> None:
         self.yours_pane.value = self._pane(self.yours, "yours", index)
         self.reference_pane.value = self._pane(self.reference, "reference", index)
+        if index < len(self.reference):
+            mine, theirs = self.yours[index], self.reference[index]
+            title = event_title(theirs if mine is MISSING else mine)
+            self.detail_pane.value = (
+                f"<b>row {index + 1}: {html.escape(title)}</b>"
+                + comparison_html(mine, theirs, self.rtol)
+            )
         self.prev_button.disabled = index <= self.slider.min
         self.next_button.disabled = index >= self.slider.max
 

@@ -95,7 +95,7 @@ def test_nothing_of_scanviz_but_the_events_is_visible_anywhere():
     *_, printed = judged(source)
     visible = json.loads(printed.strip().replace("'", '"'))
     assert sorted(Path(p).name for p in visible) == [
-        "__init__.py", "__init__.py", "events.py", "schema.py",
+        "__init__.py", "__init__.py", "display.py", "events.py", "schema.py",
     ]  # fmt: skip
 
 

@@ -78,7 +78,7 @@ def runtime(copy_numpy: bool = False) -> Path:
     (lib / "scanviz" / "trace").mkdir(parents=True)
     for name in ("runner.py", "wire.py"):
         shutil.copyfile(_HERE / name, lib / name)
-    for name in ("events.py", "schema.py"):
+    for name in ("events.py", "schema.py", "display.py"):
         shutil.copyfile(_PACKAGE / "trace" / name, lib / "scanviz" / "trace" / name)
     (lib / "scanviz" / "__init__.py").write_text(_RUNTIME_SCANVIZ, encoding="utf-8")
     (lib / "scanviz" / "trace" / "__init__.py").write_text(_RUNTIME_SCANVIZ, encoding="utf-8")
