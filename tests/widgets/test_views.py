@@ -5,6 +5,8 @@ from types import SimpleNamespace
 import matplotlib
 import numpy as np
 import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.text import Text
 
 from scanviz import Recorder, render, scan_convert
 from scanviz.abuffer.masks import mask_to_grid
@@ -14,6 +16,7 @@ from scanviz.widgets import (
     PolygonEditor,
     ViewingPipelineView,
     interpolation_stepper,
+    viewing_stepper,
     zbuffer_stepper,
 )
 from scanviz.widgets.stepper import Stepper
@@ -181,20 +184,159 @@ def test_abuffer_needs_an_abuffer_render(slide):
 # --- viewing pipeline ----------------------------------------------------------------------
 
 
-def test_viewing_tables_per_space():
-    scene = builtin_scene("sphere", level=1)
-    view = ViewingPipelineView(scene, 32, 32, max_rows=4)
-    for space in ("world", "clip", "image"):
-        view.space.value = space
-        event = next(e for e in view.trace if e.stage == space)
-        assert view.rows_note.value == f"4 of {len(event.vertices)} rows"
-        assert view.table.value.count("<tr style=") == 4
-        assert f"{event.vertices[3][0]:.4g}" in view.table.value
-    assert "clip_from_eye" not in view.matrix.value  # image: no matrix
-    view.space.value = "clip"
-    assert "clip_from_eye" in view.matrix.value
-    world = np.array(next(e for e in view.trace if e.stage == "world").vertices)
-    np.testing.assert_allclose(np.array(view.highlight.get_data_3d()).T, world)
+@pytest.fixture(scope="module")
+def viewing():
+    from scanviz.transform.examples import viewing_scene
+
+    scene = viewing_scene()
+    stepper = viewing_stepper(scene, 64, 64)
+    return scene, stepper, stepper.views[0]
+
+
+def step_of(view, kind, stage=None):
+    """The stepper step that shows the event of `kind` (and `stage`), counted from 1."""
+    return 1 + next(
+        i
+        for i, e in enumerate(view.trace)
+        if e.kind == kind and getattr(e, "stage", stage) == stage
+    )
+
+
+def test_viewing_stepper_starts_in_world_space_and_ends_on_the_screen(viewing):
+    scene, stepper, view = viewing
+    stepper.slider.value = 0
+    assert view.space == "world" and view.matrix is None
+    assert "no matrix" in view.step_table.value
+    world = np.array(scene.camera.eye)
+    np.testing.assert_allclose(np.array(view.eye_marker.get_data_3d()).T, [world])
+    stepper.slider.value = len(view.trace)
+    assert view.space == "display"
+    assert len(view.screen.get_paths()) == 7  # 3 cube faces and 4 floor tiles reach the screen
+    assert not view.screen_note.get_visible()
+
+
+def test_the_matrix_beside_the_eye_step_is_the_look_at_matrix(viewing):
+    scene, stepper, view = viewing
+    stepper.slider.value = step_of(view, "polygons_transformed", "eye")
+    eye, target = np.array(scene.camera.eye), np.array(scene.camera.look_at)
+    backward = (eye - target) / np.linalg.norm(eye - target)
+    right = np.cross(scene.camera.up, backward)
+    right /= np.linalg.norm(right)
+    rows = np.array([right, np.cross(backward, right), backward])
+    expected = np.eye(4)
+    expected[:3, :3], expected[:3, 3] = rows, -rows @ eye
+    np.testing.assert_allclose(view.matrix, expected, atol=1e-12)
+    assert "eye_from_world" in view.step_table.value
+    assert f"<td style='padding:0 6px;text-align:right'>{expected[2, 3]:.4g}</td>" in (
+        view.step_table.value
+    )  # -|eye - look_at|, to 4 digits
+
+
+def test_culling_marks_the_faces_turned_away(viewing):
+    scene, stepper, view = viewing
+    cube = scene.objects[0]
+    world = cube.mesh.positions @ cube.world_from_model[:3, :3].T + cube.world_from_model[:3, 3]
+    away = set()
+    for number, face in enumerate(cube.mesh.faces):
+        corners = world[list(face)]
+        normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
+        if normal @ (corners.mean(axis=0) - scene.camera.eye) >= 0:
+            away.add(number)
+    stepper.slider.value = step_of(view, "polygons_transformed", "eye")  # culling is done
+    assert view.culled == away
+    assert len(view.culled_faces.get_paths()) == len(away)
+    assert away.isdisjoint(view.shown)
+    first = step_of(view, "face_culled")  # the first test: the culled face is shown with its reason
+    stepper.slider.value = first
+    assert "N · V" in stepper.narration.value
+    assert ("culled" in view.step_table.value) == (0 in away)
+    assert len(view.test_vectors.get_segments()) == 2  # V and N are drawn
+    stepper.slider.value = len(view.trace)
+    assert away.isdisjoint(view.shown) and len(view.culled_faces.get_paths()) == 0
+
+
+def test_after_the_divide_every_polygon_is_in_the_box_and_new_vertices_on_its_faces(viewing):
+    _, stepper, view = viewing
+    stepper.slider.value = step_of(view, "polygons_transformed", "ndc")
+    assert view.space == "ndc"
+    for points in view.shown.values():
+        assert np.all(np.abs(points[:, :2]) <= 1 + 1e-12)
+        assert np.all((points[:, 2] >= -1e-12) & (points[:, 2] <= 1 + 1e-12))
+    marks = np.array(view.markers.get_data_3d()).T
+    assert len(marks) > 0
+    on_a_face = np.minimum.reduce(
+        [np.abs(np.abs(marks[:, 0]) - 1), np.abs(np.abs(marks[:, 1]) - 1), np.abs(marks[:, 2] - 1)]
+    )
+    np.testing.assert_allclose(on_a_face, 0, atol=1e-12)  # the floor is cut by the sides and far
+    np.testing.assert_allclose(np.abs(view.corners[:, :2]), 1, atol=1e-12)  # the box
+    assert set(np.round(view.corners[:, 2], 12)) == {0.0, 1.0}
+
+
+def test_clipping_steps_show_the_cut_pieces_and_say_which_planes(viewing):
+    _, stepper, view = viewing
+    steps = [i + 1 for i, e in enumerate(view.trace) if e.kind == "polygon_clipped"]
+    verdicts = [view.trace[k - 1].verdict for k in steps]
+    assert verdicts == ["accepted"] * 3 + ["clipped"] * 4 + ["rejected"]
+    stepper.slider.value = steps[3]  # the first floor tile is cut
+    assert view.space == "clip"
+    assert len(view.cut_off.get_segments()) == 1  # its outline before the cut, dashed
+    assert "clipper cuts" in stepper.narration.value and "plane" in stepper.narration.value
+    assert "outcode" in view.step_table.value
+    assert len(np.array(view.markers.get_data_3d()).T) == len(view.new_vertices[6]) > 0
+    stepper.slider.value = steps[-1]
+    assert "rejected" in stepper.narration.value and "right plane" in stepper.narration.value
+    assert 10 not in view.shown  # the flag is gone
+
+
+def test_every_step_is_narrated_in_plain_words_and_tables_show_few_rows(viewing):
+    _, stepper, view = viewing
+    for step in range(len(view.trace) + 1):
+        stepper.slider.value = step
+        sentence = view.narrate(step)
+        assert sentence and sentence.endswith(".")
+        for text in (sentence, view.step_table.value, view.vertex_table.value):
+            assert "array(" not in text and "np." not in text and "e-1" not in text
+        assert view.vertex_table.value.count("<tr style=") <= 6
+
+
+def drawn_texts(figure, monkeypatch):
+    """(text, window box) of every non-empty text drawn, boxes taken while it is drawn.
+
+    mplot3d places its tick labels during the draw only, so the boxes are read then.
+    """
+    seen = []
+    draw = Text.draw
+
+    def recording(text, renderer):
+        draw(text, renderer)
+        if text.get_visible() and text.get_text():
+            seen.append((text, text.get_window_extent(renderer)))
+
+    with monkeypatch.context() as patch:
+        patch.setattr(Text, "draw", recording)
+        FigureCanvasAgg(figure).draw()  # the widget shows PNGs drawn by Agg
+    return seen
+
+
+def test_viewing_figure_text_is_legible_and_nothing_overlaps(viewing, monkeypatch):
+    _, stepper, view = viewing
+    for stage in ("world", "eye", "clip", "ndc", "display"):
+        stepper.slider.value = (
+            0 if stage == "world" else step_of(view, "polygons_transformed", stage)
+        )
+        texts = drawn_texts(view.figure, monkeypatch)
+        assert len(texts) > 15  # titles, axis labels, tick labels
+        for text, _ in texts:
+            assert text.get_fontsize() >= 9, (stage, text.get_text())
+        for i, (a, box_a) in enumerate(texts):
+            for b, box_b in texts[i + 1 :]:
+                assert not box_a.overlaps(box_b), (stage, a.get_text(), b.get_text())
+
+
+def test_viewing_view_of_a_scene_still_works_alone():
+    view = ViewingPipelineView(builtin_scene("sphere", level=0), 32, 32)
+    assert view.space == "world" and len(view.trace) == 1 + 20 + 2 + 8 + 2 - 1
+    assert view.widget.children
 
 
 # --- polygon editor ------------------------------------------------------------------------
