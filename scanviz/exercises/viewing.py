@@ -304,8 +304,8 @@ register(
         result=lambda culled: [bool(c) for c in culled],
         stepper=(
             "from scanviz.exercises.viewing import case_scene\n"
-            "from scanviz.widgets import ViewingPipelineView\n"
-            "ViewingPipelineView(case_scene(CASE), 64, 64).widget"
+            "from scanviz.widgets import viewing_stepper\n"
+            "viewing_stepper(case_scene(CASE), 64, 64)"
         ),
     )
 )
@@ -757,8 +757,8 @@ register(
         rtol=RTOL,
         stepper=(
             "from scanviz.exercises.viewing import case_scene\n"
-            "from scanviz.widgets import ViewingPipelineView\n"
-            "ViewingPipelineView(case_scene(CASE), CASE['width'], CASE['height']).widget"
+            "from scanviz.widgets import viewing_stepper\n"
+            "viewing_stepper(case_scene(CASE), CASE['width'], CASE['height'])"
         ),
     )
 )
