@@ -64,6 +64,7 @@ BAND_COLOR, LINE_COLOR, COLUMN_COLOR = "tab:orange", "crimson", "#ffd54f"
 NOTHING = (
     "<i>nothing to step: the line has zero length, or none of its columns reaches the raster</i>"
 )
+LABEL_POINTS = 20.0  # a pixel this wide (points) holds a 9 pt area label such as '.87'
 MARGIN = 2  # columns kept clear of each end when measuring intensity per unit length
 
 
@@ -137,7 +138,7 @@ class DislopView:
         self._skipped = len(events) - len(kept)
         self._read_columns()
 
-        fig, (ax,) = new_figure(1, width=5.6, height=5.0)
+        fig, (ax,) = new_figure(1, width=6.0, height=5.4)
         self.region = _region(np.vstack([p0, p1]), self.width, self.height)
         self.coverage = ax.imshow(
             np.zeros((self.height, self.width)),
@@ -163,27 +164,31 @@ class DislopView:
         ax.add_patch(self.column_patch)
         ax.add_patch(self.pixel_patch)
         ax.set(xlim=self.region[:2], ylim=self.region[2:], aspect="equal")
-        ax.tick_params(labelsize=8)
+        ax.tick_params(labelsize=9)
         ax.set_title(
             f"DISLOP_L ({'exact band' if exact else 'printed formula'}): coverage so far",
             fontsize=9,
         )
         fig.tight_layout()
-        size = _label_size(fig, ax, self.region)
+        self._labelled = _pixel_points(fig, ax, self.region) >= LABEL_POINTS
         halo = [withStroke(linewidth=2.5, foreground="white")]
         self.labels = {
-            role: ax.text(0, 0, "", ha="center", va="center", fontsize=size, zorder=5,
+            role: ax.text(0, 0, "", ha="center", va="center", fontsize=9, zorder=5,
                           path_effects=halo, visible=False)
             for role in ROLES
         }  # fmt: skip
         self.figure, self.ax = fig, ax
-        self.text, self.note = widgets.HTML(), status_label()
+        self.text = widgets.HTML(layout={"flex": "1 1 380px"})
+        self.note = status_label()
         say(self.note, note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox(
             [
                 self.note,
-                widgets.HBox([self._canvas, self.text], layout={"align_items": "flex-start"}),
+                widgets.HBox(
+                    [self._canvas, self.text],
+                    layout={"align_items": "flex-start", "flex_flow": "row wrap"},
+                ),
             ]
         )
         self.step = 0
@@ -223,7 +228,9 @@ class DislopView:
         self.coverage.set_data(self.image(self.step))
         column = self.steps[self.step - 1] if self.step else None
         for artist in (self.column_patch, self.pixel_patch, *self.labels.values()):
-            artist.set_visible(column is not None)
+            artist.set_visible(
+                column is not None and (artist not in self.labels.values() or self._labelled)
+            )
         if column is not None:
             self._mark(column)
         self.text.value = self._describe(column)
@@ -240,12 +247,47 @@ class DislopView:
         for role, (x, y) in self._pixels(column).items():
             area = _role_area(column, role)
             label = self.labels[role]
-            text = f"{area:.3f}"
+            text = _short(area)
             if exact is not None and role == "spill":  # the area the printed formula leaves out
-                text = f"0\n(ex {_role_area(exact, role):.3f})"
+                text = f"0\n(ex {_short(_role_area(exact, role))})"
             label.set_position((x + 0.5, y + 0.5))
             label.set_text(text)
-            label.set_visible(bool(area) or role != "spill" or exact is not None)
+            label.set_visible(
+                self._labelled and (bool(area) or role != "spill" or exact is not None)
+            )
+
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the column, its slope and dxy, the branch they
+        select and the areas written."""
+        if not self.steps:
+            return "Nothing to step: the line has zero length or misses the raster."
+        if step == 0:
+            return (
+                f"The start: {len(self.steps)} {'rows' if self.steep else 'columns'} to walk; each "
+                "writes the band's area in the pixels it crosses, three (or four) per column."
+            )
+        column = self.steps[step - 1]
+        where = f"Row y = {column.y}" if self.steep else f"Column x = {column.x}"
+        branch = {
+            "flat": "the line is flat, so only the middle and upper pixels are met",
+            "two": f"|dxy| > fcv = {fmt(column.fcv, 3)}, so the band meets two pixels",
+            "three": f"|dxy| ≤ fcv = {fmt(column.fcv, 3)} and scv = {fmt(column.scv, 3)} > m/2,"
+            " so the band meets three pixels (a trapezoid beyond the middle one)",
+            "three_triangle": f"|dxy| ≤ fcv = {fmt(column.fcv, 3)} and scv = "
+            f"{fmt(column.scv, 3)} ≤ m/2, so the band meets three pixels (a triangle beyond)",
+            "cap": "it is an end column, so the band is clipped exactly against each pixel",
+            "exact": "the exact band area is taken, up to four pixels",
+        }.get(column.branch, f"branch {column.branch}")
+        areas = ", ".join(
+            f"{role} {_role_area(column, role):.3f}"
+            for role in ROLES
+            if role != "spill" or column.spill
+        )
+        total = sum(_role_area(column, role) for role in ROLES)
+        return (
+            f"{where}: slope m = {fmt(column.slope, 3)}, dxy = {fmt(column.dxy, 3)}; {branch}: "
+            f"{areas} (sum {total:.3f})."
+        )
 
     def _role_name(self, role: str, dxy: float) -> str:
         """The first-octant role and where it lies on the raster: 'upper (right)' for a steep line."""
@@ -393,11 +435,21 @@ def _region(ends: np.ndarray, width: int, height: int) -> tuple[int, int, int, i
     return x_start, x_end, y_start, y_end
 
 
-def _label_size(figure, axes, region) -> float:
-    """A font size at which '0.123' fits in one pixel of `axes` (points), in 4..10."""
+def _pixel_points(figure, axes, region) -> float:
+    """The side of one pixel of `region` on `axes`, in points."""
     box = axes.get_window_extent().transformed(figure.dpi_scale_trans.inverted())
     pixels = max(region[1] - region[0], region[3] - region[2])
-    return float(np.clip(min(box.width, box.height) * 72 / pixels / 3.9, 4, 10))
+    return float(min(box.width, box.height) * 72 / pixels)
+
+
+def _short(area: float) -> str:
+    """An area in a pixel label: '.87', '1', '0'.
+
+    >>> [_short(a) for a in (0.0, 0.8712, 0.004, 1.0)]
+    ['0', '.87', '0', '1']
+    """
+    text = f"{area:.2f}".rstrip("0").rstrip(".")
+    return text.removeprefix("0") if text not in ("0", "1") else text
 
 
 def dislop_stepper(p0, p1, width: int, height: int, *, exact: bool = False) -> Stepper:
@@ -477,12 +529,12 @@ def plot_coverage_comparison(p0, p1, width: int, height: int):
     Returns
     -------
     matplotlib.figure.Figure
-        Top row: the coverage of the midpoint line (binary, between the pixels
-        holding the endpoints), Wu, Gupta-Sproull, 4x4 supersampling, DISLOP_L
-        and the exact band, each titled with its intensity per unit length
-        (the image's sum over the segment's length); bottom row: method −
-        exact, on one scale (the binary line's larger errors saturate; its
-        title gives them).
+        Three methods to a row: the coverage of the midpoint line (binary,
+        between the pixels holding the endpoints), Wu, Gupta-Sproull, 4x4
+        supersampling, DISLOP_L and the exact band, each titled with its
+        intensity per unit length (the image's sum over the segment's length),
+        above its error: method − exact, on one scale (the binary line's larger
+        errors saturate; its title gives them).
 
     Raises
     ------
@@ -492,7 +544,7 @@ def plot_coverage_comparison(p0, p1, width: int, height: int):
     Examples
     --------
     >>> figure = plot_coverage_comparison((1.3, 2.2), (13.6, 8.1), 16, 11)
-    >>> figure.axes[8].get_title()  # top row: axes 0, 2, ..., 10
+    >>> figure.axes[8].get_title()  # each method's coverage, then its error
     'DISLOP_L\\nI/length = 1'
     """
     from matplotlib.figure import Figure
@@ -507,33 +559,36 @@ def plot_coverage_comparison(p0, p1, width: int, height: int):
         default=0.0,
     )
     scale = scale or 1.0  # all exact: any scale shows zeros
-    count = len(images)
-    aspect = exact.shape[0] / max(exact.shape[1], 1)
-    figure = Figure(figsize=(WIDEST, 2 * (WIDEST / count) * min(max(aspect, 0.4), 1.5) + 1.6))
-    grid = figure.add_gridspec(2, count + 1, width_ratios=[1] * count + [0.06])
+    per_row = 3  # methods side by side: a 9 pt title fits a panel a third of the figure wide
+    blocks = math.ceil(len(images) / per_row)
+    aspect = min(max(exact.shape[0] / max(exact.shape[1], 1), 0.4), 1.5)
+    side = (WIDEST - 0.9) / per_row  # inches per panel, the colour bars aside
+    figure = Figure(figsize=(WIDEST, 2 * blocks * (side * aspect + 0.55) + 0.5))
+    grid = figure.add_gridspec(2 * blocks, per_row + 1, width_ratios=[1] * per_row + [0.06])
     extent = (0, exact.shape[1], 0, exact.shape[0])
     shown = {"origin": "lower", "extent": extent, "interpolation": "nearest"}
     for k, (name, image) in enumerate(images.items()):
-        top = figure.add_subplot(grid[0, k])
+        row, column = 2 * (k // per_row), k % per_row
+        top = figure.add_subplot(grid[row, column])
         picture = top.imshow(image, cmap="Greys", vmin=0.0, vmax=1.0, **shown)
         intensity = fmt(float(image.sum()) / length, 4) if length else "–"
-        top.set_title(f"{name}\nI/length = {intensity}", fontsize=8)
-        bottom = figure.add_subplot(grid[1, k])
+        top.set_title(f"{name}\nI/length = {intensity}", fontsize=9)
+        bottom = figure.add_subplot(grid[row + 1, column])
         error = bottom.imshow(errors[name], cmap="RdBu_r", vmin=-scale, vmax=scale, **shown)
         bottom.set_title(
-            f"max |error| {fmt(float(np.abs(errors[name]).max(initial=0.0)), 3)}", fontsize=8
+            f"max |error| {fmt(float(np.abs(errors[name]).max(initial=0.0)), 3)}", fontsize=9
         )
         for axes in (top, bottom):
             axes.set_xticks([])
             axes.set_yticks([])
-    figure.colorbar(picture, cax=figure.add_subplot(grid[0, count])).ax.tick_params(labelsize=7)
-    bar = figure.colorbar(error, cax=figure.add_subplot(grid[1, count]))
-    bar.ax.tick_params(labelsize=7)
-    bar.set_label("method − exact", fontsize=8)
+    figure.colorbar(picture, cax=figure.add_subplot(grid[0, per_row])).ax.tick_params(labelsize=9)
+    bar = figure.colorbar(error, cax=figure.add_subplot(grid[1, per_row]))
+    bar.ax.tick_params(labelsize=9)
+    bar.set_label("method − exact", fontsize=9)
     figure.suptitle(
         f"({fmt(p0[0])}, {fmt(p0[1])})–({fmt(p1[0])}, {fmt(p1[1])}), length {fmt(length)}: "
-        "coverage (top), error against the exact band area (bottom)",
-        fontsize=9,
+        "coverage,\nand below it the error against the exact band area",
+        fontsize=10,
     )
     figure.tight_layout()
     return figure
@@ -669,7 +724,7 @@ def plot_ropiness(angles, length: float, width: int, height: int):
         "the others are ropy",
         fontsize=9,
     )
-    axes.legend(fontsize=8, loc="lower left")
+    axes.legend(fontsize=9, loc="lower left")
     axes.grid(alpha=0.3)
     figure.tight_layout()
     return figure
@@ -738,9 +793,9 @@ def plot_period_table(m: float, levels: int = 64, period: int | None = None):
         f"intensities floor(A·{table.levels - 1} + 1/2): {p + 1} × 3 entries", fontsize=9
     )
     for axes in (left, right):
-        axes.legend(fontsize=8)
+        axes.legend(fontsize=9)
         axes.grid(alpha=0.3)
-        axes.tick_params(labelsize=8)
+        axes.tick_params(labelsize=9)
     figure.suptitle(
         f"m = {fmt(table.m)} (a = {math.degrees(math.atan(table.m)):.2f}°), {table.levels} levels: "
         f"period p = {p}, m·p = {fmt(table.value, 6)}, n = {table.n}, "
@@ -861,6 +916,6 @@ def plot_post_antialias(before, after, *, zoom=None):
             spine.set_edgecolor("tab:orange")
             spine.set_linewidth(1.5)
     for axes in figure.axes:
-        axes.tick_params(labelsize=7)
+        axes.tick_params(labelsize=9)
     figure.tight_layout()
     return figure

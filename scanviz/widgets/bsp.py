@@ -20,7 +20,7 @@ import numpy as np
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.bsp import BSP
-from ._common import WIDEST, html_table, say, status_label
+from ._common import WIDEST, html_table, quiet_canvas, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
@@ -98,7 +98,11 @@ class BspView:
         self.event, self.order, self.note = widgets.HTML(), widgets.HTML(), status_label()
         self._canvas = figure_widget(self.figure)
         self.widget = widgets.VBox(
-            [self.note, self._canvas, widgets.HBox([self.event, self.order])]
+            [
+                self.note,
+                self._canvas,
+                widgets.HBox([self.event, self.order], layout={"flex_flow": "row wrap"}),
+            ]
         )
         self.step = 0
         self.show(0)
@@ -108,7 +112,7 @@ class BspView:
 
         with plt.ioff():
             fig = plt.figure(figsize=(WIDEST, 6.5))
-        fig.canvas.header_visible = False
+        quiet_canvas(fig)
         grid = fig.add_gridspec(2, 3, height_ratios=(1.1, 1))
         ax_tree, ax_part = fig.add_subplot(grid[0, :2]), fig.add_subplot(grid[0, 2])
         ax_now, ax_final, ax_z = (fig.add_subplot(grid[1, k]) for k in range(3))
@@ -142,7 +146,7 @@ class BspView:
                         (y + cy) / 2,
                         side,
                         color=TREE_EDGE,
-                        fontsize=8,
+                        fontsize=9,
                         ha="center",
                         va="center",
                         bbox=LABEL_BOX,
@@ -182,7 +186,7 @@ class BspView:
             ax.text(
                 *centre,
                 piece.label,
-                fontsize=8,
+                fontsize=9,
                 ha="center",
                 va="center",
                 bbox=LABEL_BOX,
@@ -232,6 +236,56 @@ class BspView:
         self._show_order(pieces_painted, focused, focus)
         refresh_figure(self.figure, self._canvas)
 
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the node built, the piece split, or the node visited."""
+        if step == 0:
+            return (
+                f"The start: {len(self.pieces)} pieces to place in a tree of planes, which is "
+                "then walked from the viewpoint to paint them back to front."
+            )
+        event = self.steps[step - 1]
+        if event.kind == "polygon_split":
+            return (
+                f"Piece {event.piece} straddles the plane of polygon {event.by}, so it is split: "
+                f"{event.front.label} lies in front of that plane and {event.behind.label} behind."
+            )
+        if event.kind == "bsp_node":
+            where = (
+                "the root" if event.parent < 0 else f"the {event.side} child of node {event.parent}"
+            )
+            sides = [
+                f"{_listed(event.front)} in front of its plane",
+                f"{_listed(event.back)} behind",
+            ] + ([f"{_listed(event.coplanar)} on it"] if event.coplanar else [])
+            if not (event.front or event.back or event.coplanar):
+                sides = ["a leaf, as no other piece is left in its part of space"]
+            chosen = next((c for c in event.candidates if c.label == event.piece), None)
+            choice = (
+                f", chosen from {len(event.candidates)} candidates as making the fewest "
+                f"splits ({chosen.splits})"
+                if chosen is not None and len(event.candidates) > 1
+                else ""
+            )
+            return (
+                f"Node {event.node}, {where}, takes piece {event.piece}{choice}: "
+                + "; ".join(sides)
+                + "."
+            )
+        visits = sum(e.kind == "bsp_visited" for e in self.steps[:step])
+        before = self.tree.painted[: self.tree.painted_before[visits - 1]]
+        done = _listed(label for n in before for label in self.tree.nodes[n].pieces)
+        node = self.tree.nodes[event.node]
+        if node.front < 0 and node.back < 0:
+            after = f"after {done}" if before else "the first"
+            return f"Node {event.node} is a leaf, so piece {event.piece} is painted now, {after}."
+        side = "in front of" if event.viewer_in_front else "behind"
+        later = "front" if event.first == "back" else "back"
+        return (
+            f"At node {event.node} (piece {event.piece}) the viewpoint is {side} its plane, so "
+            f"the {event.first} subtree is displayed first, then {event.piece}, then the "
+            f"{later} subtree; painted so far: {done}."
+        )
+
     @staticmethod
     def _focus(event) -> int:
         """The node the current step is about (-1: none, or a split)."""
@@ -280,6 +334,14 @@ def _shared_points(front, behind) -> np.ndarray:
     theirs = {tuple(v) for v in behind}
     shared = [v[:2] for v in front if tuple(v) in theirs]
     return np.array(shared or [(np.nan, np.nan)], np.float64).reshape(-1, 2)
+
+
+def _listed(labels) -> str:
+    """'5a and 1', 'nothing'."""
+    labels = list(labels)
+    if not labels:
+        return "nothing"
+    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
 
 
 def _names(labels) -> str:

@@ -1,25 +1,29 @@
-"""Step through depth sort pair by pair, and through the painter's algorithm pixel by pixel.
+"""Step through depth sort pair by pair, and the painter's algorithm polygon by polygon.
 
 `DepthSortView` shows, after each step of a traced depth sort, the list
 (the pieces still to paint, far end first) with the pair being tested
 highlighted, the tests run on that pair and the one that settled it, the
 swaps and splits so far, and the image of the pieces painted so far beside
-the final image and the z-buffer's. `PainterView` shows the painter's
-sorted list and the image as it is painted, beside the z-buffer's, with the
+the final image and the z-buffer's. A piece is painted when it leaves the
+far end of the list: that is a step of its own. `PainterView` shows the
+painter's sorted list and the image as it is painted, one polygon per step
+(or one sample per step, ``steps="pixel"``), beside the z-buffer's, with the
 samples where the painter's order is wrong outlined. `depth_sort_stepper`
 and `painter_stepper` solve screen polygons with a `Recorder` and wrap the
-view in a `Stepper`.
+view in a `Stepper`. Each view's ``narrate(step)`` says what the step did.
 
 Both views draw what the trace recorded: the list after each swap and
 split (``pieces_swapped``, ``polygons_sorted``), the pairs
 (``pair_tested``) and the samples painted (``pixel_painted``). A piece
 leaves the list when it is painted: that is when the next pair names a
-later piece as S.
+later piece as S. A painting step is marked in the stepper's trace by the
+piece's last ``pixel_painted`` event (in pixel steps, by each of them).
 """
 
 from __future__ import annotations
 
 import html
+from typing import NamedTuple
 
 import ipywidgets as widgets
 import numpy as np
@@ -29,7 +33,7 @@ from matplotlib.patches import Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import ScreenPolygons, solve, zbuffer
 from ..visibility.painter import Painter, sort_key
-from ._common import WIDEST, html_table, new_figure, say, status_label
+from ._common import WIDEST, fmt, html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
@@ -40,8 +44,21 @@ DECISION_KINDS = (
     "polygon_split",
     "paint_order",
 )
+STEP_CHOICES = ("polygon", "pixel")  # what a painting step paints: one piece, or one sample
 LIST_COLUMNS = ("#", "piece", "polygon", "zmin", "zmax", "role")
 TEST_COLUMNS = ("test", "result")
+# The ambiguity tests as the slides number them, each as the question it asks of S and S'.
+TEST_QUESTIONS = {
+    "minimax": ("0", "is {o} wholly nearer than {s}?"),
+    "x_extent": ("1", "are the x extents of {s} and {o} apart?"),
+    "y_extent": ("2", "are their y extents apart?"),
+    "s_behind_plane": ("3", "is {s} entirely behind the plane of {o}?"),
+    "other_in_front": ("4", "is {o} entirely in front of the plane of {s}?"),
+    "no_overlap": ("5", "do their projections not overlap?"),
+    "other_behind_plane": ("3'", "is {o} entirely behind the plane of {s}?"),
+    "s_in_front": ("4'", "is {s} entirely in front of the plane of {o}?"),
+}
+DIGITS = 3  # significant digits of the depths in the narration
 
 
 def _image_axes(axes, ids: np.ndarray, title: str):
@@ -55,32 +72,35 @@ def _image_axes(axes, ids: np.ndarray, title: str):
     return image
 
 
+def _check_steps(steps: str) -> str:
+    if steps not in STEP_CHOICES:
+        raise ValueError(f"'steps' must be one of {STEP_CHOICES}; got {steps!r}")
+    return steps
+
+
 class _Painting:
-    """The samples each piece wrote (its ``pixel_painted`` events), to paint any prefix of pieces."""
+    """The ``pixel_painted`` events of each piece, in painting order, to paint any prefix."""
 
     def __init__(self, trace: Trace, shape: tuple[int, int]) -> None:
         self.shape = shape
         self.events = [e for e in trace if e.kind == "pixel_painted"]
-        self.writes: dict[str, list] = {}
+        self.of_piece: dict[str, list] = {}
         for e in self.events:
-            if e.painted:
-                self.writes.setdefault(e.piece, []).append((e.y, e.x, e.polygon))
+            self.of_piece.setdefault(e.piece, []).append(e)
 
-    def pieces(self, labels) -> np.ndarray:
-        """(H, W) polygon ids after painting the pieces `labels` in order (-1: nothing yet)."""
+    def image(self, labels, partial: str | None = None, count: int = 0) -> np.ndarray:
+        """(H, W) polygon ids after painting the pieces `labels`, then `count` samples of `partial`."""
         ids = np.full(self.shape, -1, np.int64)
-        for label in labels:
-            for y, x, polygon in self.writes.get(label, ()):
-                ids[y, x] = polygon
-        return ids
-
-    def first(self, count: int) -> np.ndarray:
-        """(H, W) polygon ids after the first `count` pixel_painted events."""
-        ids = np.full(self.shape, -1, np.int64)
-        for e in self.events[:count]:
+        events = [e for label in labels for e in self.of_piece.get(label, ())]
+        events += self.of_piece.get(partial, [])[:count]
+        for e in events:
             if e.painted:
                 ids[e.y, e.x] = e.polygon
         return ids
+
+    def written(self, label: str) -> list:
+        """The samples piece `label` wrote (its ``pixel_painted`` events with ``painted``)."""
+        return [e for e in self.of_piece.get(label, ()) if e.painted]
 
 
 def list_states(steps: Trace) -> list[tuple[list, list, object]]:
@@ -113,6 +133,50 @@ def list_states(steps: Trace) -> list[tuple[list, list, object]]:
     return states
 
 
+class _Shown(NamedTuple):
+    """What the depth sort view shows after a step."""
+
+    pending: list  # PieceRecords still to paint, far end first
+    painted: list  # labels of the pieces painted whole
+    pair: object  # the PairTested under test, or None
+    painting: object  # the PieceRecord being painted at this step, or None
+    samples: int  # how many of its pixel_painted events are shown (pixel steps)
+
+
+def _display(decisions: Trace, painting: _Painting, steps: str) -> tuple[list, list]:
+    """(steps, shown): the decision events with a step per piece painted (or per sample), and
+    what each step shows (`_Shown`, step 0 first).
+
+    A piece is painted where it leaves the list: before the pair whose S lies
+    beyond it, or after ``paint_order`` for the pieces left. A step that
+    paints is marked by the piece's last ``pixel_painted`` event (pixel
+    steps: by each); a piece that covers no sample, by the decision event.
+    """
+    states = list_states(decisions)
+    marks, shown = [], [_Shown([], [], None, None, 0)]
+    for k, event in enumerate(decisions):
+        before, after = states[k], states[k + 1]
+        pending, done = list(before[0]), list(before[1])
+        newly = after[1][len(done) :]
+        if event.kind == "paint_order":  # the settled list first, then its pieces one by one
+            marks.append(event)
+            shown.append(_Shown(pending, done, None, None, 0))
+        records = {r.label: r for r in pending}
+        records.update((r.label, r) for r in getattr(event, "pieces", ()))
+        for label in newly:
+            pending = [r for r in pending if r.label != label]
+            events = painting.of_piece.get(label, [])
+            counts = range(1, len(events) + 1) if steps == "pixel" and events else [len(events)]
+            for count in counts:
+                marks.append(events[count - 1] if count else event)
+                shown.append(_Shown(pending, done, None, records[label], count))
+            done = done + [label]
+        if event.kind != "paint_order":
+            marks.append(event)
+            shown.append(_Shown(after[0], after[1], after[2], None, 0))
+    return marks, shown
+
+
 class DepthSortView:
     """The list, the pair being tested and its tests, swaps and splits, the image painted so far.
 
@@ -129,14 +193,20 @@ class DepthSortView:
         another polygon are outlined.
     note : str, optional
         Shown above the view.
+    steps : {"polygon", "pixel"}
+        A piece leaving the list is painted in one step ("polygon"), or one
+        step per sample it paints ("pixel").
 
     Attributes
     ----------
     steps : Trace
-        The decision events: one step each (give it to the `Stepper`).
+        One event per step (give it to the `Stepper`): each decision event,
+        and, where a piece is painted, its last ``pixel_painted`` event (each
+        of them for pixel steps).
     widget : ipywidgets.VBox
     list_table : ipywidgets.HTML
-        The list, far end first; S and S' of the current pair highlighted.
+        The list, far end first; S and S' of the current pair highlighted,
+        or the piece being painted.
     tests_table : ipywidgets.HTML
         The current pair's tests in order with pass/fail; the one that settled it highlighted.
     settled : ipywidgets.HTML
@@ -147,12 +217,16 @@ class DepthSortView:
         The pieces painted so far (polygon colors, white where nothing is).
     """
 
-    def __init__(self, trace: Trace, result, zbuffer_result, *, note: str = "") -> None:
-        self.steps = Trace(e for e in trace if e.kind in DECISION_KINDS)
+    def __init__(
+        self, trace: Trace, result, zbuffer_result, *, note: str = "", steps: str = "polygon"
+    ) -> None:
+        self.decisions = Trace(e for e in trace if e.kind in DECISION_KINDS)
         self.result, self.zbuffer_result = result, zbuffer_result
         height, width = result.polygon.shape
         self._painting = _Painting(trace, (height, width))
-        self._states = list_states(self.steps)
+        self.steps_mode = _check_steps(steps)
+        marks, self._shown = _display(self.decisions, self._painting, self.steps_mode)
+        self.steps = Trace(marks)
         fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=WIDEST, height=3.3)
         self.painted_image = _image_axes(
             ax_painted, np.full((height, width), -1), "painted so far (S solid, S' dashed)"
@@ -178,7 +252,8 @@ class DepthSortView:
                 self.note,
                 self._canvas,
                 widgets.HBox(
-                    [self.list_table, widgets.VBox([self.settled, self.tests_table, self.log])]
+                    [self.list_table, widgets.VBox([self.settled, self.tests_table, self.log])],
+                    layout={"flex_flow": "row wrap"},
                 ),
             ]
         )
@@ -186,32 +261,47 @@ class DepthSortView:
         self.show(0)
 
     def show(self, step: int) -> None:
-        """Show the list, the pair and the image after the first `step` decision events."""
+        """Show the list, the pair and the image after the first `step` steps."""
         self.step = int(step)
-        pending, painted, pair = self._states[self.step]
-        self.painted_image.set_data(polygon_colors(self._painting.pieces(painted)))
+        shown = self._shown[self.step]
+        partial = shown.painting.label if shown.painting is not None else None
+        ids = self._painting.image(shown.painted, partial, shown.samples)
+        self.painted_image.set_data(polygon_colors(ids))
+        pair = shown.pair
         roles = {pair.piece: "S", pair.other: "S'"} if pair is not None else {}
+        listed = ([shown.painting] if shown.painting is not None else []) + shown.pending
+        if shown.painting is not None:
+            roles = {partial: "painted now"}
         rows = [
             (k + 1, r.label, r.polygon, r.zmin, r.zmax, roles.get(r.label, ""))
-            for k, r in enumerate(pending)
+            for k, r in enumerate(listed)
         ]
-        states = ["current" if r.label in roles else "" for r in pending]
-        done = html.escape(", ".join(painted)) or "none"
-        heading = f"<b>the list</b> ({len(pending)} to paint, far end first; painted: {done})"
+        states = ["current" if r.label in roles else "" for r in listed]
+        done = html.escape(", ".join(shown.painted)) or "none"
+        heading = f"<b>the list</b> ({len(shown.pending)} to paint, far end first; painted: {done})"
         self.list_table.value = heading + html_table(LIST_COLUMNS, rows, states=states)
-        self._show_pair(pair)
+        self._show_pair(pair, shown.painting)
         self._show_log()
-        by_label = {r.label: r for r in pending}
-        for patch, label in ((self.s_outline, "piece"), (self.other_outline, "other")):
-            record = by_label.get(getattr(pair, label, None))
+        by_label = {r.label: r for r in listed}
+        outlined = (
+            (partial, None)
+            if partial
+            else (getattr(pair, "piece", None), getattr(pair, "other", None))
+        )
+        for patch, label in zip((self.s_outline, self.other_outline), outlined, strict=True):
+            record = by_label.get(label)
             patch.set_visible(record is not None)
             if record is not None:
                 patch.set_xy(np.array([v[:2] for v in record.vertices]))
         refresh_figure(self.figure, self._canvas)
 
-    def _show_pair(self, pair) -> None:
+    def _show_pair(self, pair, painting) -> None:
         if pair is None:
-            self.settled.value = "<i>no pair under test</i>"
+            self.settled.value = (
+                f"<i>no pair under test: piece {html.escape(painting.label)} is painted</i>"
+                if painting is not None
+                else "<i>no pair under test</i>"
+            )
             self.tests_table.value = ""
             return
         outcome = {
@@ -228,7 +318,7 @@ class DepthSortView:
         )
         pieces = f"S = {html.escape(pair.piece)}, S' = {html.escape(pair.other)}"
         self.settled.value = f"<b>{pieces}:</b> {by} &rarr; {html.escape(outcome)}"
-        rows = [(t.name, t.passed) for t in pair.tests]
+        rows = [(f"{TEST_QUESTIONS[t.name][0]}. {t.name}", t.passed) for t in pair.tests]
         states = ["current" if t.passed else "" for t in pair.tests]
         self.tests_table.value = html_table(TEST_COLUMNS, rows, states=states)
 
@@ -245,9 +335,125 @@ class DepthSortView:
         shown = "<br>".join(html.escape(line) for line in lines[::-1][:8])
         self.log.value = f"<b>swaps and splits</b> ({len(lines)})<br>{shown}"
 
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the pair and the test that settled it, the swap,
+        the split, or the piece painted."""
+        if step == 0:
+            count = len(self._shown[1].pending) if len(self._shown) > 1 else 0
+            return (
+                f"The start: {count} polygons, to be sorted on their farthest depth (zmax) and "
+                "checked pair by pair before each is painted."
+            )
+        event, shown, before = self.steps[step - 1], self._shown[step], self._shown[step - 1]
+        if shown.painting is not None:
+            return _painted_sentence(
+                shown, self._painting, len(shown.pending), self.steps_mode == "pixel"
+            )
+        if event.kind == "polygons_sorted":
+            order = ", ".join(p.label for p in event.pieces)
+            again = "re-sorted with the two new pieces" if step > 1 else "sorted"
+            return f"The list is {again} on zmax, farthest first: {order}."
+        if event.kind == "pair_tested":
+            records = {r.label: r for r in shown.pending}
+            following = self.steps[step] if step < len(self.steps) else None
+            return _pair_sentence(event, records[event.piece], records[event.other], following)
+        if event.kind == "pieces_swapped":
+            return (
+                f"Piece {event.moved} must be painted before {event.piece}, so it moves to the far "
+                f"end of the list: {', '.join(event.order)}."
+            )
+        if event.kind == "polygon_split":
+            reason = {"cycle": "to break a cycle", "interpenetration": "where they interpenetrate"}
+            return (
+                f"Piece {event.piece} is cut by the plane of polygon {event.by} "
+                f"{reason.get(event.why, f'({event.why})')}: {event.front.label} lies in front "
+                f"of it and {event.behind.label} behind."
+            )
+        left = ", ".join(r.label for r in before.pending) or "none"
+        return (
+            f"The order is settled: {len(event.pieces)} pieces, far to near "
+            f"{', '.join(p.label for p in event.pieces)}; still to paint: {left}."
+        )
+
+
+def _test_name(name: str, s: str, other: str) -> str:
+    number, question = TEST_QUESTIONS[name]
+    return f"test {number} ({question.format(s=s, o=other)})"
+
+
+def _pair_sentence(pair, s, other, following) -> str:
+    """What a ``pair_tested`` event found, with the depths of S and S' (`PieceRecord`s)."""
+    depths = (
+        f"S = {s.label} (z {fmt(s.zmin, DIGITS)}..{fmt(s.zmax, DIGITS)}) and "
+        f"S' = {other.label} (z {fmt(other.zmin, DIGITS)}..{fmt(other.zmax, DIGITS)})"
+    )
+    if pair.outcome == "no_overlap":
+        return (
+            f"{depths} do not overlap in z: S' is wholly nearer (minimax), so {s.label} may be "
+            f"painted before {other.label}."
+        )
+    failed = [t.name for t in pair.tests[1:] if not t.passed]
+    tried = f"test{'s' if len(failed) > 1 else ''} " + ", ".join(
+        TEST_QUESTIONS[n][0] for n in failed
+    )
+    head = f"{depths} overlap in z"
+    if pair.outcome == "order_ok":
+        fails = f"; {tried} fail{'' if len(failed) > 1 else 's'}" if failed else ""
+        return (
+            f"{head}{fails}; {_test_name(pair.settled_by, s.label, other.label)} passes, so "
+            f"{s.label} may be painted before {other.label}."
+        )
+    if pair.outcome == "swap":
+        return (
+            f"{head}; {tried} fail, but {_test_name(pair.settled_by, s.label, other.label)} "
+            f"passes, so {other.label} must be painted first."
+        )
+    if pair.outcome == "split":
+        cut = (
+            f": {following.piece} is cut by the plane of polygon {following.by} next"
+            if following is not None and following.kind == "polygon_split"
+            else ""
+        )
+        why = "they form a cycle" if pair.settled_by else "they interpenetrate"
+        return f"{head}; {tried} fail, so no order works ({why}) and a piece is split{cut}."
+    return (
+        f"{head}; {tried} fail and no split can break the tie (the split budget is spent, or no "
+        "piece straddles another's plane), so the pair is kept in list order."
+    )
+
+
+def _painted_sentence(shown: _Shown, painting: _Painting, left: int, by_sample: bool) -> str:
+    """The piece painted at a step: all its samples, or (`by_sample`) the latest one."""
+    piece = shown.painting
+    written = painting.written(piece.label)
+    events = painting.of_piece.get(piece.label, [])
+    if not events:
+        return f"Piece {piece.label} (polygon {piece.polygon}) covers no sample: painting it changes nothing."
+    if by_sample:
+        e = events[shown.samples - 1]
+        under = f"over polygon {e.previous}" if e.previous >= 0 else "on the background"
+        done = "paints" if e.painted else "skips (it lies outside the piece's cuts)"
+        return (
+            f"Piece {piece.label} {done} sample ({e.x}, {e.y}) at z = {fmt(e.z, DIGITS)}, "
+            f"{under}: sample {shown.samples} of {len(events)}."
+        )
+    over = sorted({e.previous for e in written if e.previous not in (-1, piece.polygon)})
+    covers = ", ".join(f"polygon {p}" for p in over)
+    why = (
+        "is the last piece in the list"
+        if not left
+        else "passed every test against the pieces still in the list"
+    )
+    return (
+        f"Piece {piece.label} (polygon {piece.polygon}) {why}, so it is painted: "
+        f"{len(written)} samples"
+        + (f", over {covers} where they overlap" if over else "")
+        + (f"; {left} piece{'s' if left != 1 else ''} left." if left else ".")
+    )
+
 
 class PainterView:
-    """The painter's sorted list and the image painted sample by sample, beside the z-buffer's.
+    """The painter's sorted list and the image painted polygon by polygon, beside the z-buffer's.
 
     Parameters
     ----------
@@ -255,24 +461,49 @@ class PainterView:
         ``polygons_sorted`` and ``pixel_painted`` events of a traced ``solve("painter", ...)``.
     result, zbuffer_result
         The painter's result and the z-buffer's on the same polygons.
+    key : str
+        The key the list was sorted on (as `Painter`).
     note : str, optional
+    steps : {"polygon", "pixel"}
+        After the sort, one polygon painted per step ("polygon"), or one sample ("pixel").
 
     Attributes
     ----------
     steps : Trace
-        ``polygons_sorted`` then one ``pixel_painted`` per step.
+        ``polygons_sorted``, then per step the last ``pixel_painted`` event of
+        the polygon painted (pixel steps: each ``pixel_painted`` event).
     widget : ipywidgets.VBox
     list_table : ipywidgets.HTML
         The sorted list (the key, zmin, zmax); the polygon being painted highlighted.
     painted_image : matplotlib AxesImage
     """
 
-    def __init__(self, trace: Trace, result, zbuffer_result, *, key: str, note: str = "") -> None:
-        self.steps = Trace(e for e in trace if e.kind in ("polygons_sorted", "pixel_painted"))
+    def __init__(
+        self,
+        trace: Trace,
+        result,
+        zbuffer_result,
+        *,
+        key: str,
+        note: str = "",
+        steps: str = "polygon",
+    ) -> None:
+        self.steps_mode = _check_steps(steps)
         self.result, self.zbuffer_result, self.key = result, zbuffer_result, key
         height, width = result.polygon.shape
-        self._painting = _Painting(self.steps, (height, width))
-        self._sorted = next((e.pieces for e in self.steps if e.kind == "polygons_sorted"), ())
+        self._painting = _Painting(trace, (height, width))
+        sort = [e for e in trace if e.kind == "polygons_sorted"]
+        self._sorted = sort[0].pieces if sort else ()
+        pixels = self._painting.events
+        if self.steps_mode == "pixel":
+            self._ends = list(range(1, len(pixels) + 1))
+        else:  # the index after each piece's last sample
+            self._ends = [
+                k + 1
+                for k, e in enumerate(pixels)
+                if k + 1 == len(pixels) or pixels[k + 1].piece != e.piece
+            ]
+        self.steps = Trace(sort[:1] + [pixels[end - 1] for end in self._ends])
         fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=WIDEST, height=3.3)
         self.painted_image = _image_axes(ax_painted, np.full((height, width), -1), "painted so far")
         _image_axes(ax_final, result.polygon, f"painter's ({key})")
@@ -280,7 +511,9 @@ class PainterView:
         wrong = result.polygon != zbuffer_result.polygon
         for ax in (ax_final, ax_z):
             outline_samples(ax, wrong)
+        self.current_outline = PolygonPatch(np.zeros((3, 2)), fill=False, ec="black", lw=2.5)
         self.current_marker = Rectangle((0, 0), 1, 1, fill=False, ec="black", lw=2, visible=False)
+        ax_painted.add_patch(self.current_outline)
         ax_painted.add_patch(self.current_marker)
         fig.tight_layout()
         self.figure = fig
@@ -295,16 +528,28 @@ class PainterView:
         self.step = 0
         self.show(0)
 
+    def painted(self, step: int) -> int:
+        """How many ``pixel_painted`` events the first `step` steps have painted."""
+        return self._ends[step - 2] if step >= 2 else 0
+
     def show(self, step: int) -> None:
-        """Show the image after the first `step` events and the polygon being painted."""
+        """Show the image after the first `step` steps and the polygon being painted."""
         self.step = int(step)
-        painted = max(self.step - 1, 0)  # the first step is the sort
-        self.painted_image.set_data(polygon_colors(self._painting.first(painted)))
-        current = self._painting.events[painted - 1] if painted else None
-        self.current_marker.set_visible(current is not None)
+        count = self.painted(self.step)
+        ids = np.full(self._painting.shape, -1, np.int64)
+        for e in self._painting.events[:count]:
+            if e.painted:
+                ids[e.y, e.x] = e.polygon
+        self.painted_image.set_data(polygon_colors(ids))
+        current = self._painting.events[count - 1] if count else None
+        self.current_marker.set_visible(current is not None and self.steps_mode == "pixel")
+        label = current.piece if current is not None else None
+        record = next((r for r in self._sorted if r.label == label), None)
+        self.current_outline.set_visible(record is not None)
         if current is not None:
             self.current_marker.set_xy((current.x, current.y))
-        label = current.piece if current is not None else None
+        if record is not None:
+            self.current_outline.set_xy(np.array([v[:2] for v in record.vertices]))
         rows = [
             (k + 1, r.label, r.polygon, sort_key(_piece(r), self.key), r.zmin, r.zmax)
             for k, r in enumerate(self._sorted)
@@ -315,6 +560,40 @@ class PainterView:
         )
         refresh_figure(self.figure, self._canvas)
 
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the sort, the polygon painted, or the sample."""
+        count = len(self._sorted)
+        if step == 0:
+            return (
+                f"The start: {count} polygons, to be sorted on {self.key} and painted far to "
+                "near, each over whatever is already there, with no depth test."
+            )
+        if step == 1:
+            keys = ", ".join(
+                f"{r.label} ({fmt(sort_key(_piece(r), self.key), DIGITS)})" for r in self._sorted
+            )
+            return f"The polygons are sorted on {self.key}, farthest first: {keys}."
+        event = self.steps[step - 1]
+        if self.steps_mode == "pixel":
+            under = f"over polygon {event.previous}" if event.previous >= 0 else "on the background"
+            return (
+                f"Polygon {event.polygon} paints sample ({event.x}, {event.y}) at z = "
+                f"{fmt(event.z, DIGITS)}, {under}: the painter never compares depths."
+            )
+        written = self._painting.written(event.piece)
+        rank = next(k for k, r in enumerate(self._sorted) if r.label == event.piece) + 1
+        over = {}
+        for e in written:
+            if e.previous >= 0 and e.previous != e.polygon:
+                over[e.previous] = over.get(e.previous, 0) + 1
+        covers = ", ".join(f"{n} of polygon {p}" for p, n in sorted(over.items()))
+        return (
+            f"Polygon {event.polygon}, number {rank} of {count} in the list, is painted: "
+            f"{len(written)} samples"
+            + (f", covering {covers} painted before it" if over else ", none painted before")
+            + "."
+        )
+
 
 def _piece(record):
     from ..visibility import Piece
@@ -322,13 +601,17 @@ def _piece(record):
     return Piece(record.polygon, record.label, np.array(record.vertices))
 
 
-def depth_sort_stepper(polygons: ScreenPolygons, width: int, height: int, **options) -> Stepper:
+def depth_sort_stepper(
+    polygons: ScreenPolygons, width: int, height: int, *, steps: str = "polygon", **options
+) -> Stepper:
     """Solve `polygons` with depth sort, traced, and step through its decision with a `DepthSortView`.
 
     Parameters
     ----------
     polygons : ScreenPolygons
     width, height : int
+    steps : {"polygon", "pixel"}
+        A piece leaving the list is painted in one step, or one step per sample.
     **options
         Those of `scanviz.visibility.solve` (``sample``, ``subpixel_bits``, ...)
         and ``max_splits`` of `DepthSort`.
@@ -336,47 +619,77 @@ def depth_sort_stepper(polygons: ScreenPolygons, width: int, height: int, **opti
     Returns
     -------
     Stepper
-        ``.views[0]`` is the `DepthSortView`; one step per decision event.
+        ``.views[0]`` is the `DepthSortView`; one step per decision event and
+        per piece painted.
 
     Examples
     --------
     >>> from scanviz.visibility.examples import interpenetrating
     >>> stepper = depth_sort_stepper(interpenetrating(), 16, 12)
-    >>> stepper.slider.max, stepper.views[0].steps[-1].kind
-    (8, 'paint_order')
+    >>> stepper.slider.max, [e.kind for e in stepper.views[0].steps][-4:]
+    (11, ['pair_tested', 'paint_order', 'pixel_painted', 'pixel_painted'])
     """
     from ..visibility.depth_sort import DepthSort
 
+    _check_steps(steps)
     algorithm = DepthSort(max_splits=options.pop("max_splits", None))
     result = solve(algorithm, polygons, width, height, trace=Recorder(), **options)
     reference = zbuffer(polygons, width, height, **options)
-    view = DepthSortView(result.trace, result, reference)
-    view.steps, note = first_steps(view.steps, "steps of the decision")
+    view = DepthSortView(result.trace, result, reference, steps=steps)
+    view.steps, note = first_steps(view.steps, "steps")
     if note:
         say(view.note, note)
-    return Stepper(view.steps, [view], title="depth sort: one pair, swap or split per step")
+    painted = "piece" if steps == "polygon" else "sample"
+    return Stepper(
+        view.steps,
+        [view],
+        title=f"depth sort: one pair, swap or split per step, then one {painted} painted per step",
+    )
 
 
 def painter_stepper(
-    polygons: ScreenPolygons, width: int, height: int, key: str = "zmin", **options
+    polygons: ScreenPolygons,
+    width: int,
+    height: int,
+    key: str = "zmin",
+    *,
+    steps: str = "polygon",
+    **options,
 ) -> Stepper:
-    """Solve `polygons` with the painter's algorithm, traced, and watch it paint sample by sample.
+    """Solve `polygons` with the painter's algorithm, traced, and watch it paint polygon by polygon.
+
+    Parameters
+    ----------
+    polygons : ScreenPolygons
+    width, height : int
+    key : {"zmin", "zmax", "centroid"}
+        The depth the list is sorted on (as `Painter`).
+    steps : {"polygon", "pixel"}
+        After the sort, one polygon painted per step, or one sample.
+    **options
+        Those of `scanviz.visibility.solve` (``sample``, ``subpixel_bits``, ...).
 
     Returns
     -------
     Stepper
-        ``.views[0]`` is the `PainterView`: the sort, then one sample per step.
+        ``.views[0]`` is the `PainterView`: the sort, then one polygon (or sample) per step.
 
     Examples
     --------
     >>> from scanviz.visibility.examples import long_behind_short
     >>> stepper = painter_stepper(long_behind_short(), 16, 12)
-    >>> stepper.views[0].summary.value
-    '20 samples differ from the z-buffer (outlined in red)'
+    >>> stepper.slider.max, stepper.views[0].summary.value
+    (3, '20 samples differ from the z-buffer (outlined in red)')
     """
+    _check_steps(steps)
     recorder = Recorder(kinds=["polygons_sorted", "pixel_painted"])
     result = solve(Painter(key=key), polygons, width, height, trace=recorder, **options)
     reference = zbuffer(polygons, width, height, **options)
-    trace, note = first_steps(result.trace)
-    view = PainterView(trace, result, reference, key=key, note=note)
-    return Stepper(view.steps, [view], title=f"painter's algorithm (sorted on {key})")
+    view = PainterView(result.trace, result, reference, key=key, steps=steps)
+    view.steps, note = first_steps(view.steps)
+    if note:
+        say(view.note, note)
+    painted = "polygon" if steps == "polygon" else "sample"
+    return Stepper(
+        view.steps, [view], title=f"painter's algorithm (sorted on {key}): one {painted} per step"
+    )

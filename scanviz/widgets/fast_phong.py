@@ -118,7 +118,7 @@ class FastPhongView:
             vmax=max(float(self._errors.max(initial=0.0)), 1.0),
         )
         fig.colorbar(self.error_image, ax=ax_error, fraction=0.046, pad=0.03).set_label(
-            "levels", fontsize=8
+            "levels", fontsize=9
         )
         self.pixel_patches, self.sample_dots = [], []
         closed = np.vstack([vertices, vertices[:1]])
@@ -135,7 +135,7 @@ class FastPhongView:
             self.pixel_patches.append(patch)
             self.sample_dots.append(dot)
             ax.set(xlim=region[:2], ylim=region[2:], aspect="equal")
-            ax.tick_params(labelsize=8)
+            ax.tick_params(labelsize=9)
         expansion = self.setup.expansion if self.setup is not None else "vertex"
         ax_fast.set_title(f"fast Phong so far (expansion about the {expansion})", fontsize=9)
         ax_error.set_title("|fast − exact Phong|, max over r, g, b", fontsize=9)
@@ -154,23 +154,15 @@ class FastPhongView:
             Patch(fc="none", ec="black", lw=2, label="current pixel (dot: its sample)"),
             Patch(fc=UNSHADED, ec="0.7", label="covered, not shaded yet"),
         ]
-        fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8)
-        fig.tight_layout(rect=(0, 0.06, 1, 1))
+        fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=9)
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
         self.figure, self.axes = fig, (ax_fast, ax_error)
         self.text = widgets.HTML()
         self.coefficients = widgets.HTML(self._coefficients_table())
         self.note = status_label()
         say(self.note, note)
         self._canvas = figure_widget(fig)
-        self.widget = widgets.VBox(
-            [
-                self.note,
-                self._canvas,
-                widgets.HBox(
-                    [self.text, widgets.VBox([self.coefficients], layout={"margin": "0 0 0 16px"})]
-                ),
-            ]
-        )
+        self.widget = widgets.VBox([self.note, self._canvas, self.text, self.coefficients])
         self.step = 0
         self.show(0)
 
@@ -206,6 +198,36 @@ class FastPhongView:
             dot.set_data([current.x + self._offset], [current.y + self._offset])
         self.text.value = self._describe(current)
         refresh_figure(self.figure, self._canvas)
+
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the sample, how its quadratics were found, its
+        table level and its colour against exact Phong."""
+        if not self.steps:
+            return "Nothing to step: the triangle covers no sample."
+        if step == 0:
+            return (
+                f"The start: {len(self.steps)} samples to shade row by row from the bottom, "
+                "each from quadratics set up once for the triangle."
+            )
+        pixel, k = self.steps[step - 1], step - 1
+        how = (
+            "a span's first sample, so its quadratics are evaluated directly"
+            if pixel.direct
+            else "its quadratics are stepped from the sample before with two additions each"
+        )
+        lit = (
+            f"cos θ = {fmt(pixel.cos_theta, 3)} > 0, so the highlight is added: its cosine "
+            f"{fmt(pixel.cos_specular, 4)} is at table level {pixel.level} of "
+            f"{len(self.setup.table)} "
+            f"({_count(pixel.comparisons, 'comparison')})"
+            if pixel.lit
+            else f"cos θ = {fmt(pixel.cos_theta, 3)} ≤ 0, so it is unlit (no highlight)"
+        )
+        colour = ", ".join(f"{c:.0f}" for c in self._fast[k])
+        return (
+            f"Pixel ({pixel.x}, {pixel.y}): {how}; {lit}; colour ({colour}) is "
+            f"{fmt(self._errors[k], 3)} levels from exact Phong."
+        )
 
     def _describe(self, pixel) -> str:
         if not self.steps:
@@ -304,11 +326,20 @@ class FastPhongView:
         quadratics = (s.cos_theta, s.cos_specular, *s.ambient_diffuse)
         rows = [(name, *(fmt(t, 5) for t in q)) for name, q in zip(names, quadratics, strict=True)]
         origin = fmt(s.origin, DIGITS)
-        return (
+        return scroll_box(
             f"<b>the triangle's quadratics</b>, about the {s.expansion} {html.escape(origin)}, "
             f"{s.specular}; the table has {len(s.table)} levels<br>"
             + html_table(("quadratic", *TERMS), rows)
         )
+
+
+def scroll_box(content: str) -> str:
+    """`content` (HTML) in a box that scrolls sideways when it is wider than the output, with a
+    "scroll →" hint above it (a wide table is never cut off)."""
+    return (
+        "<div style='font-size:11px;color:#777;text-align:right'>scroll &rarr;</div>"
+        f"<div style='overflow-x:auto;max-width:100%'>{content}</div>"
+    )
 
 
 def _quadratics(pixel) -> tuple[tuple[float, ...], tuple[float, ...]]:

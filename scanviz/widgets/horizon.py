@@ -89,7 +89,7 @@ class HorizonView:
             (self.curves[name],) = axes.plot(
                 [], [], color=color, ls=dash, lw=1, alpha=0.8, label=name
             )
-        axes.legend(fontsize=8, loc="upper right")
+        axes.legend(fontsize=9, loc="upper right")
         axes.set_xlim(-0.5, self.width - 0.5)
         axes.set_ylim(-0.5, self.height - 0.5)
         axes.set_aspect("equal")
@@ -153,6 +153,25 @@ class HorizonView:
             self.current_drawn.set_segments([[(x0, y0), (x1, y1)] for x0, y0, x1, y1 in parts])
             self.text.value = self._describe(event, self._columns[self.step - 1])
         refresh_figure(self.figure, self._canvas)
+
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the curve, how many of its columns rise above the
+        upper horizon, fall below the lower or are hidden, and the parts drawn."""
+        if step == 0:
+            return (
+                "The start: no curve yet, so the upper horizon is -inf and the lower +inf in "
+                "every column."
+            )
+        event, columns = self.curve_events[step - 1], self._columns[step - 1]
+        flags = [e.flag for e in columns]
+        plane = "y" if event.family == "x" else "x"
+        return (
+            f"Curve {event.curve} ({plane} = const, number {event.step + 1} from the front) "
+            f"crosses {len(columns)} columns: {flags.count(1)} at or above the upper horizon, "
+            f"{flags.count(-1)} at or below the lower and {flags.count(0)} hidden between "
+            f"them, so {sum(len(e.drawn) for e in columns)} parts are drawn and the horizons "
+            "grow to take it in."
+        )
 
     @staticmethod
     def _describe(event, columns) -> str:

@@ -123,8 +123,9 @@ class PerimeterView:
         ]
         if self._coverage is not None:
             handles.append(Patch(fc=COVERED, ec="0.7", label="covered so far"))
-        fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8)
-        fig.tight_layout(rect=(0, 0.06, 1, 1))
+        fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=9)
+        fig.tight_layout(rect=(0, 0.11, 1, 1))
+        self.grid.number_facets()
         self.figure, self.axes = fig, (ax_screen, ax_grid)
         self.text = widgets.HTML()
         self.note = status_label()
@@ -287,6 +288,54 @@ class PerimeterView:
             return
         self.edge_points.set_offsets(np.array(edge.points, np.float64))
         self.edge_points.set_facecolors([VISIBLE if v else HIDDEN for v in edge.visible])
+
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the enumeration, a facet, an edge's points tested
+        against the perimeter (the first hidden one with its numbers), or an update."""
+        if step == 0:
+            return (
+                "The start: the perimeter is empty (top 0, bottom H, right 0, left W), so "
+                "nothing is hidden yet."
+            )
+        event = self.events[step - 1]
+        if event.kind == "facets_enumerated":
+            rows, columns = np.shape(event.order)
+            row, column = (int(v[0]) for v in np.nonzero(np.asarray(event.order) == 1))
+            return (
+                f"The viewpoint gives viewing case {event.case}, so the {rows * columns} facets "
+                f"are numbered nearest first, from facet 1 at row {row}, column {column}."
+            )
+        if event.kind == "perimeter_facet":
+            return (
+                f"Facet {event.number} (row {event.row}, column {event.column}, region class "
+                f"{event.region_class}) is next nearest: its sides {', '.join(event.sides)} are "
+                "drawn and tested against the perimeter."
+            )
+        if event.kind == "perimeter_update":
+            return (
+                f"Facet {event.facet}'s {event.points} visible points grow the perimeter: "
+                f"{len(event.columns)} columns (top, bottom) and {len(event.rows)} rows "
+                "(right, left) change."
+            )
+        if event.kind != "perimeter_edge":
+            return event.kind.replace("_", " ")
+        edge, count = event.edge, len(event.points)
+        head = f"Edge {edge.kind}({edge.row}, {edge.column}) of facet {event.facet}: "
+        if all(event.visible):
+            return head + f"all {count} points lie outside the perimeter, so all are visible."
+        arrays, _ = self.perimeter(step - 1)
+        k = event.visible.index(False)
+        x, y = event.points[k]
+        why = (
+            f"bottom[{x}] = {arrays['bottom'][x]} < {y} < top[{x}] = {arrays['top'][x]} and "
+            f"left[{y}] = {arrays['left'][y]} < {x} < right[{y}] = {arrays['right'][y]}"
+        )
+        shown = sum(event.visible)
+        return head + (
+            f"{shown} of {count} points visible; point ({x}, {y}) is hidden as {why}."
+            if shown
+            else f"all {count} points are hidden, e.g. ({x}, {y}) as {why}."
+        )
 
     def _describe(self, event, arrays) -> str:
         if event is None:

@@ -19,7 +19,7 @@ from matplotlib.patches import Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.scanline import Scanline
-from ._common import WIDEST, html_table, new_figure, say, status_label
+from ._common import WIDEST, fmt, html_table, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
@@ -132,7 +132,7 @@ class ScanlineVisibilityView:
         self.note = status_label()
         say(self.note, note)
         self._canvas = figure_widget(fig)
-        tables = widgets.HBox([self.ast, self.sst, self.spans])
+        tables = widgets.HBox([self.ast, self.sst, self.spans], layout={"flex_flow": "row wrap"})
         self.widget = widgets.VBox([self.note, self._canvas, tables])
         self.row = None
         self.step = 0
@@ -197,6 +197,54 @@ class ScanlineVisibilityView:
         depth = span.depths[span.surfaces.index(span.visible)]
         return self._segment(span.visible, depth, span.x_start, span.x_end)
 
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the surface table, a row's active surfaces, or a
+        span with the surfaces over it, their depths and the one visible."""
+        if step == 0:
+            return (
+                "The start: the polygons go into a surface table sorted by their first row; "
+                "then each row is cut into spans, and each span shows its nearest surface."
+            )
+        event = self.trace[step - 1]
+        if event.kind == "surface_table_built":
+            rows = "; ".join(
+                f"{r.polygon} on rows {r.y_start}..{r.y_end - 1}" for r in event.surfaces
+            )
+            return f"The sorted surface table lists {len(event.surfaces)} polygons by first row: {rows}."
+        if event.kind == "active_surfaces":
+            changes = [f"{_listed(event.entered)} enter{'s' if len(event.entered) == 1 else ''}"]
+            changes = changes if event.entered else []
+            if event.exhausted:
+                changes.append(
+                    f"{_listed(event.exhausted)} {'is' if len(event.exhausted) == 1 else 'are'} exhausted"
+                )
+            what = " and ".join(changes) or "no polygon enters or leaves"
+            return f"Row y = {event.y}: {what}; the active surfaces are {_listed(event.active) or 'none'}."
+        span = (
+            f"{event.x_start}"
+            if event.x_end - event.x_start == 1
+            else f"{event.x_start}..{event.x_end - 1}"
+        )
+        where = f"Row {event.y}, x {span}"
+        if not event.surfaces:
+            return f"{where}: no surface covers it, so it shows the background."
+        depths = _listed(
+            f"{p} (z {fmt(z, 3)})" for p, z in zip(event.surfaces, event.depths, strict=True)
+        )
+        if event.reused:
+            return (
+                f"{where}: the same surfaces as on the row below ({depths}), so its decision is "
+                f"reused: {event.visible} is visible."
+            )
+        split = (
+            f" after the planes cross at x = {fmt(event.split_at, 4)}"
+            if event.split_at is not None
+            else ""
+        )
+        if len(event.surfaces) == 1:
+            return f"{where}{split}: only surface {depths} covers it, so it is visible."
+        return f"{where}{split}: surfaces {depths} overlap; {event.visible} is the nearest at x = {event.x_start}, so it is visible."
+
     def _show_tables(self, row, here) -> None:
         """The AST of the row, the SST (pending, active, exhausted) and the row's spans."""
         if row is None:
@@ -228,6 +276,12 @@ class ScanlineVisibilityView:
             for i, _ in here
         ]
         self.spans.value = "<b>spans of the row</b>" + html_table(SPAN_COLUMNS, rows, states=states)
+
+
+def _listed(ids) -> str:
+    """'2', '0 and 1', '0, 1 and 2' ('' for none)."""
+    ids = [str(p) for p in ids]
+    return ", ".join(ids[:-1]) + " and " + ids[-1] if len(ids) > 1 else "".join(ids)
 
 
 def _surface_state(record, row) -> str:

@@ -26,7 +26,7 @@ from ._common import WIDEST
 # Region class k, and region k of the viewing cases, is tinted CLASS_COLORS[k - 1].
 CLASS_COLORS = (*matplotlib.colormaps["Pastel1"].colors[:8], "#cccccc")  # its 9th is near white
 CURRENT = "#ff8c00"  # the current edge, facet or curve
-SMALLEST_NUMBER = 4.5  # points: facets whose number would be smaller are left unnumbered
+SMALLEST_NUMBER = 9.0  # points: facets whose number would be smaller are left unnumbered
 MAX_PANELS = 4  # grids from above side by side
 FAR = 4.0  # a viewpoint farther than this many domain sizes is drawn at that distance
 
@@ -103,11 +103,8 @@ class GridFromAbove:
         self.cells = PolyCollection(squares, facecolors=self.colors, edgecolors="0.45", lw=0.6)
         axes.add_collection(self.cells)
         self._draw_regions_and_viewpoint(view)
-        size = min(10.0, 1.1 * self._cell_points() / len(str(len(self.rows))))
-        self.numbered = size >= SMALLEST_NUMBER
-        for n, (cx, cy) in enumerate(zip((x0 + x1) / 2, (y0 + y1) / 2, strict=True), 1):
-            if self.numbered:
-                axes.text(cx, cy, str(n), ha="center", va="center", fontsize=size)
+        self._centres = np.stack([(x0 + x1) / 2, (y0 + y1) / 2], axis=1)
+        self.numbered = False
         self.current = Rectangle((0, 0), 0, 0, fill=False, ec=CURRENT, lw=2.5, visible=False)
         axes.add_patch(self.current)
         axes.set_aspect("equal")
@@ -162,13 +159,24 @@ class GridFromAbove:
         self.axes.text(
             *(shown + [0, 0.08 * size]),
             label,
-            fontsize=7,
+            fontsize=9,
             ha="center",
             va="bottom",
             bbox={"fc": "white", "ec": "none", "alpha": 0.7, "pad": 1},
         )
         self.axes.set_xlim(low[0], high[0])
         self.axes.set_ylim(low[1], high[1])
+
+    def number_facets(self) -> None:
+        """Write each facet's number in it, once the figure is laid out, if it fits at 9 pt.
+
+        The numbers are left out where a facet is too small for them (`numbered` says which).
+        """
+        size = min(10.0, 1.3 * self._cell_points() / len(str(len(self.rows))))  # digit: 0.64 em
+        self.numbered = size >= SMALLEST_NUMBER
+        if self.numbered:
+            for n, (cx, cy) in enumerate(self._centres, 1):
+                self.axes.text(cx, cy, str(n), ha="center", va="center", fontsize=size)
 
     def _cell_points(self) -> float:
         """The side of the smallest facet in typographic points, as the axes are laid out now."""
@@ -240,10 +248,19 @@ def plot_grid(surface: GridSurface, views: View | Sequence[View]):
         check_surface_view(surface, view)
     side = min(4.6, WIDEST / len(views))
     figure = Figure(figsize=(side * len(views), side))
-    for k, view in enumerate(views):
-        axes = figure.add_subplot(1, len(views), k + 1)
-        GridFromAbove(axes, surface.x, surface.y, _enumeration_event(surface, view), view)
+    grids = [
+        GridFromAbove(
+            figure.add_subplot(1, len(views), k + 1),
+            surface.x,
+            surface.y,
+            _enumeration_event(surface, view),
+            view,
+        )
+        for k, view in enumerate(views)
+    ]
     figure.tight_layout()
+    for grid in grids:
+        grid.number_facets()
     return figure
 
 

@@ -121,17 +121,15 @@ def plot_results(
     zbuffer = render(surface.scene(view, width, height), width, height, shading=shading)
     facet = np.where(zbuffer.polygon >= 0, zbuffer.polygon // 2, -1)
     differ = int((facet != shaded.facet).sum())
-    figure = Figure(figsize=(WIDEST, WIDEST / 4 * max(height / width, 0.5) + 0.7))
+    figure = Figure(figsize=(WIDEST, WIDEST / 4 * max(height / width, 0.5) + 0.9))
     panels = (
-        (lines.image, f"FPA hidden lines: {lines.stats.segments} segments"),
-        (horizon.image, f"FHA (family {family}): {horizon.stats.segments} parts"),
-        (shaded.image, f"FPA hidden surfaces: {differ} px differ"),
-        (zbuffer.image, "z-buffer: render(surface.scene(...))"),
+        (lines.image, f"FPA hidden lines:\n{lines.stats.segments} segments"),
+        (horizon.image, f"FHA (family {family}):\n{horizon.stats.segments} parts"),
+        (shaded.image, f"FPA hidden surfaces:\n{differ} px differ"),
+        (zbuffer.image, "z-buffer:\nrender(surface.scene(...))"),
     )
     for k, (image, title) in enumerate(panels):
         _screen_axes(figure.add_subplot(1, 4, k + 1), image, title)
-    for axes in figure.axes:
-        axes.title.set_fontsize(8)
     figure.tight_layout()
     return figure
 
@@ -194,7 +192,7 @@ def plot_mismatch(
         image[points[chosen, 1], points[chosen, 0]] = to_rgb(color)
     columns = 2 if region is not None else 1
     side = WIDEST / 2 if region is not None else 4.75
-    figure = Figure(figsize=(side * columns, side * max(height / width, 0.5) + 0.6))
+    figure = Figure(figsize=(side * columns, side * max(height / width, 0.5) + 1.1))
     axes = figure.add_subplot(1, columns, 1)
     _screen_axes(axes, image, f"FPA against the z-buffer (case {comparison.case})")
     wrong = points[(shown != zshown)]
@@ -217,8 +215,8 @@ def plot_mismatch(
         ),
         Patch(fc=FALSE_VISIBLE, label=f"false visible ({comparison.false_visible})"),
     ]
-    figure.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8)
-    figure.tight_layout(rect=(0, 0.07, 1, 1))
+    figure.legend(handles=handles, loc="lower center", ncol=2, fontsize=9)
+    figure.tight_layout(rect=(0, 0.12, 1, 1))
     return figure
 
 

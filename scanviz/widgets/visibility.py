@@ -232,7 +232,8 @@ def compare_visibility(
     if polygons.count <= len(PALETTE):
         handles = [Patch(fc=PALETTE[p], label=f"polygon {p}") for p in range(polygons.count)]
         handles.append(Patch(fc="none", ec=DIFFERENCE, label="not the z-buffer's"))
-        figure.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8)
+        columns = len(handles) if len(handles) <= 4 else math.ceil(len(handles) / 2)
+        figure.legend(handles=handles, loc="lower center", ncol=columns, fontsize=9)
     figure.tight_layout(rect=(0, 0.06, 1, 1))
     return figure
 

@@ -82,7 +82,7 @@ class WarnockView:
         self._final_colors = polygon_colors(result.polygon)
         self.step = 0
 
-        fig, axes = new_figure(4, width=WIDEST, height=3.0)
+        fig, axes = new_figure(4, width=WIDEST, height=2.9, per_row=4)
         extent = (0, width, 0, height)
         ax_tree, ax_decided, ax_final, ax_zbuffer = axes
         ax_tree.imshow(
@@ -117,8 +117,8 @@ class WarnockView:
             ax.set_xlim(0, width)
             ax.set_ylim(0, height)
         handles = [Patch(fc="none", ec=CASE_COLORS[c], lw=2, label=c) for c in CASES]
-        fig.legend(handles=handles, loc="lower center", ncol=len(CASES), fontsize=8)
-        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        fig.legend(handles=handles, loc="lower center", ncol=len(CASES), fontsize=9)
+        fig.tight_layout(rect=(0, 0.09, 1, 1))
         self.figure, self.axes = fig, axes
         self.text = widgets.HTML()
         self.note = status_label()
@@ -152,6 +152,43 @@ class WarnockView:
         self.text.value = self._describe(current, done)
         refresh_figure(self.figure, self._canvas)
 
+    def narrate(self, step: int) -> str:
+        """Step `step` in one plain sentence: the area, the polygons meeting it, its case and why."""
+        if step == 0:
+            height, width = self.result.polygon.shape
+            return (
+                f"The start: the whole {width} x {height} screen is one area; each area is "
+                "decided at once if it is simple enough, else cut into four quadrants."
+            )
+        area = self.events[self.visited(step) - 1]
+        where = f"Area x {_range(area.x_start, area.x_end)}, y {_range(area.y_start, area.y_end)}"
+        if area.case == "pixel":
+            where = f"Pixel ({area.x_start}, {area.y_start})"
+        where += f" (level {area.level})"
+        meeting = _polygons(area.polygons)
+        if area.case == "empty":
+            return f"{where} meets no polygon, so it is all background."
+        if area.case == "single":
+            return (
+                f"{where} meets only polygon {area.visible}, so it is drawn where it covers "
+                "the area and the rest is background."
+            )
+        if area.case == "surrounding":
+            others = [p for p in area.polygons if p != area.visible]
+            nearer = f", nearer than {_polygons(others)} everywhere" if others else ""
+            return f"{where}: polygon {area.visible} covers it all{nearer}, so it fills the area."
+        if area.case == "pixel":
+            shown = (
+                f"polygon {area.visible} is nearest at its sample"
+                if area.visible >= 0
+                else "no polygon covers its sample: background"
+            )
+            return f"{where} meets {meeting}: {shown}."
+        return (
+            f"{where} meets {meeting} and no one of them decides it, so it is cut into "
+            "four quadrants."
+        )
+
     def _describe(self, area, done: int) -> str:
         counts = np.bincount(self._case[:done], minlength=len(CASES)).tolist()
         table = html_table(COUNT_COLUMNS, [(done, *counts)])
@@ -167,6 +204,21 @@ class WarnockView:
             f"<span style='color:{CASE_COLORS[area.case]}'><b>{html.escape(area.case)}</b></span>"
             f": {html.escape(shown)}; polygons meeting it: {html.escape(meeting)}" + table
         )
+
+
+def _range(start: int, end: int) -> str:
+    """The half-open range [start, end) of pixels as people count them: '3' or '0..7'."""
+    return f"{start}" if end - start == 1 else f"{start}..{end - 1}"
+
+
+def _polygons(ids) -> str:
+    """'polygon 2', 'polygons 0 and 1', 'polygons 0, 1 and 2'."""
+    ids = [str(p) for p in ids]
+    if not ids:
+        return "no polygon"
+    if len(ids) == 1:
+        return f"polygon {ids[0]}"
+    return "polygons " + ", ".join(ids[:-1]) + " and " + ids[-1]
 
 
 def warnock_stepper(polygons, width: int, height: int, *, prune: bool = True, **options) -> Stepper:

@@ -24,7 +24,8 @@ def test_depth_sort_stepper_shows_each_pair_and_what_settled_it():
     stepper = depth_sort_stepper(examples.interpenetrating(), 16, 12)
     view = stepper.views[0]
     kinds = [e.kind for e in view.steps]
-    assert kinds[0] == "polygons_sorted" and kinds[-1] == "paint_order"
+    assert kinds[0] == "polygons_sorted" and "paint_order" in kinds
+    assert kinds[-1] == "pixel_painted"  # the last piece painted, after the order is settled
     first_pair = kinds.index("pair_tested") + 1
     stepper.slider.value = first_pair
     pair = view.steps[first_pair - 1]
@@ -33,9 +34,9 @@ def test_depth_sort_stepper_shows_each_pair_and_what_settled_it():
         "no order works: a piece is split"  # the two rectangles cross
     )
     assert text(view.tests_table.value).split()[2:] == [
-        "minimax", "fail", "x_extent", "fail", "y_extent", "fail", "s_behind_plane", "fail",
-        "other_in_front", "fail", "no_overlap", "fail", "other_behind_plane", "fail",
-        "s_in_front", "fail",
+        "0.", "minimax", "fail", "1.", "x_extent", "fail", "2.", "y_extent", "fail",
+        "3.", "s_behind_plane", "fail", "4.", "other_in_front", "fail", "5.", "no_overlap", "fail",
+        "3'.", "other_behind_plane", "fail", "4'.", "s_in_front", "fail",
     ]  # fmt: skip
     rows = text(view.list_table.value)
     assert "1 0 0 0.2 0.8 S" in rows and "2 1 1 0.3 0.7 S'" in rows
@@ -50,7 +51,8 @@ def test_depth_sort_stepper_logs_splits_and_ends_with_the_final_image():
     stepper.slider.value = len(view.steps)
     assert text(view.log.value).startswith(f"swaps and splits ({splits + view.result.algorithm.swaps})")  # fmt: skip
     assert "cut by the plane of polygon" in text(view.log.value)
-    assert text(view.settled.value) == "no pair under test"
+    last = view.result.order[-1].label  # the last step paints the last piece
+    assert text(view.settled.value) == f"no pair under test: piece {last} is painted"
     # At the end everything is painted: the image is the result's, which is the z-buffer's.
     final = polygon_colors(zbuffer(examples.cyclic_overlap(), 24, 24).polygon)
     assert np.array_equal(view.painted_image.get_array(), final)
@@ -72,7 +74,7 @@ def test_the_list_loses_its_far_end_as_pieces_are_painted():
             assert pair is event and labels[0] == pair.piece  # S is the far end of the list
 
 
-def test_painter_stepper_paints_sample_by_sample_and_outlines_its_errors():
+def test_painter_stepper_paints_polygon_by_polygon_and_outlines_its_errors():
     stepper = painter_stepper(examples.long_behind_short(), 16, 12, key="zmin")
     view = stepper.views[0]
     wrong = (
@@ -80,9 +82,14 @@ def test_painter_stepper_paints_sample_by_sample_and_outlines_its_errors():
         != zbuffer(examples.long_behind_short(), 16, 12).polygon
     )
     assert text(view.summary.value).startswith(f"{int(wrong.sum())} samples differ")
-    stepper.slider.value = 2  # the sort, then the first sample of the short polygon (first: zmin)
-    assert "1 1 1 0.5 0.5 0.5" in text(view.list_table.value)
-    assert (view.painted_image.get_array() != 1.0).any(axis=2).sum() == 1
+    painted = solve("painter", examples.long_behind_short(), 16, 12, trace=True).trace
+    pieces = list(dict.fromkeys(e.piece for e in painted if e.kind == "pixel_painted"))
+    assert stepper.slider.max == 1 + len(pieces)  # the sort, then one step per polygon
+    stepper.slider.value = 2  # the first polygon (sorted on zmin, farthest first) painted whole
+    first = [e for e in painted if e.kind == "pixel_painted" and e.piece == pieces[0]]
+    assert f"1 {pieces[0]} {first[0].polygon} 0.5 0.5 0.5" in text(view.list_table.value)
+    shown = (view.painted_image.get_array() != 1.0).any(axis=2)
+    assert shown.sum() == len({(e.x, e.y) for e in first})
     stepper.slider.value = len(view.steps)
     assert np.array_equal(
         view.painted_image.get_array(),
@@ -90,3 +97,14 @@ def test_painter_stepper_paints_sample_by_sample_and_outlines_its_errors():
     )
     zmax = painter_stepper(examples.long_behind_short(), 16, 12, key="zmax").views[0]
     assert text(zmax.summary.value).startswith("0 samples differ")
+
+
+def test_painter_pixel_steps_paint_one_sample_each():
+    stepper = painter_stepper(examples.long_behind_short(), 16, 12, steps="pixel")
+    painted = solve("painter", examples.long_behind_short(), 16, 12, trace=True).trace
+    samples = [e for e in painted if e.kind == "pixel_painted"]
+    assert stepper.slider.max == 1 + len(samples)
+    stepper.slider.value = 2
+    view = stepper.views[0]
+    assert (view.painted_image.get_array() != 1.0).any(axis=2).sum() == 1
+    assert view.current_marker.get_xy() == (samples[0].x, samples[0].y)
