@@ -21,7 +21,7 @@ def test_trace_prints_the_slide_table(capsys):
     assert "e0: 2 4/5" in rows["5"] and "e1: 9, -1 1/3, 11, +1" in rows["5"]
     assert rows["5"].rstrip().endswith("[3,9) w-1 [9,12) w-1")
     assert "e1: 7 2/3" in rows["6"] and "[3,8) w-1 [10,12) w-1" in rows["6"]
-    assert "horizontal, kept for topology" in out
+    assert "horizontal: crosses no row, never active" in out
 
 
 def test_trace_json_shape(capsys):

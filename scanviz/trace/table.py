@@ -32,9 +32,9 @@ def format_number(value: float, exact: Fraction | None = None) -> str:
 
 def _edge_line(edge: EdgeRecord) -> str:
     note = (
-        "horizontal, kept for topology"
+        "horizontal: crosses no row, never active"
         if edge.horizontal
-        else ("crosses no sample row, kept for topology" if edge.kept_for_topology else "")
+        else ("between two rows: crosses none, never active" if edge.kept_for_topology else "")
     )
     return (
         f"  e{edge.edge:<3} ({edge.x0:g},{edge.y0:g})-({edge.x1:g},{edge.y1:g})  bucket {edge.bucket:>4}"
@@ -56,7 +56,7 @@ def trace_table(events: Iterable[Event]) -> str:
     >>> from scanviz import scan_convert
     >>> print(trace_table(scan_convert([(0, 0), (2, 0), (0, 2)], 3, 3, trace=True).trace))
     edge table (bucket = ceil(ymin); active for bucket <= y < ymax)
-      e0   (0,0)-(2,0)  bucket    0  ymax 0        x 0          dx/dy 0        w +0  horizontal, kept for topology
+      e0   (0,0)-(2,0)  bucket    0  ymax 0        x 0          dx/dy 0        w +0  horizontal: crosses no row, never active
       e1   (2,0)-(0,2)  bucket    0  ymax 2        x 2          dx/dy -1       w -1
       e2   (0,0)-(0,2)  bucket    0  ymax 2        x 0          dx/dy 0        w +1
     <BLANKLINE>
