@@ -1,10 +1,22 @@
-"""Every lesson notebook runs top to bottom without errors and without editing."""
+"""Every lesson notebook runs top to bottom without errors and without editing.
 
+Where Debian's chromium is installed (``make test`` installs it),
+``tests/browser/test_lab.py`` runs every notebook in JupyterLab and checks all
+of this and more; these kernel-only runs are then not repeated.
+"""
+
+import os
+import shutil
 from pathlib import Path
 
 import nbformat
 import pytest
 from nbclient import NotebookClient
+
+IN_THE_BROWSER = pytest.mark.skipif(
+    bool(shutil.which("chromium")) or os.access("/usr/bin/chromium", os.X_OK),
+    reason="tests/browser/test_lab.py runs every notebook in Chromium and checks the same",
+)
 
 NOTEBOOKS = sorted((Path(__file__).parent.parent / "notebooks").glob("*.ipynb"))
 
@@ -13,6 +25,7 @@ def test_there_is_a_tour():
     assert NOTEBOOKS and NOTEBOOKS[0].name == "00_tour.ipynb"
 
 
+@IN_THE_BROWSER
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
 def test_notebook_runs(path):
     notebook = nbformat.read(path, as_version=4)
@@ -26,6 +39,7 @@ def test_notebook_runs(path):
 EXERCISES = sorted((Path(__file__).parent.parent / "notebooks" / "exercises").glob("*.ipynb"))
 
 
+@IN_THE_BROWSER
 @pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.name)
 def test_exercise_notebook_runs_as_released(path):
     """The blank notebook runs: the stepper shows the reference, the check cell reports the stub."""

@@ -18,7 +18,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..trace.display import Formatter, fields_line, mask_layout, place
+from ..trace.display import Formatter, fields_line, mask_layout, place, scroll_box
 from .compare import MISSING, Difference, RasterDifference, aligned, first_difference
 from .jail.wire import Opaque, record_fields, record_name
 from .verdict import NO_MATCH, Verdict
@@ -115,7 +115,7 @@ def comparison_html(yours: object, reference: object, rtol: float = 0.0) -> str:
     if mine is None and theirs is None:
         differs = first_difference(yours, reference, rtol) is not None
         style = _CELL + (";" + _DIFFERS if differs else "")
-        return (
+        return scroll_box(
             f"<table style='{_TABLE}'><tr><th style='{_HEAD}'>yours</th>"
             f"<th style='{_HEAD}'>reference</th></tr><tr><td style='{style}'>"
             f"{formatter.html(yours)}</td><td style='{style}'>{formatter.html(reference)}</td>"
@@ -140,7 +140,7 @@ def comparison_html(yours: object, reference: object, rtol: float = 0.0) -> str:
         rows.append(
             f"<tr>{head_cell}<td style='{style}'>{left}</td><td style='{style}'>{right}</td></tr>"
         )
-    return f"<table style='{_TABLE}'>{head}{''.join(rows)}</table>"
+    return scroll_box(f"<table style='{_TABLE}'>{head}{''.join(rows)}</table>")
 
 
 def event_title(event: object) -> str:

@@ -27,12 +27,14 @@ import difflib
 import json
 import os
 from dataclasses import dataclass, field
-
-import nbformat
+from typing import TYPE_CHECKING
 
 from ..limits import json_nesting, read_bounded
 
 ANSWER_MARKER = "# scanviz: answer "
+if TYPE_CHECKING:
+    import nbformat
+
 MAX_NESTING = 100  # JSON levels; a notebook's deepest (widget state) is far less
 
 
@@ -76,6 +78,8 @@ def read_notebook(path: str | os.PathLike) -> nbformat.NotebookNode:
         raise NotebookError(
             f"{name!r} is not valid JSON: {error.msg} at line {error.lineno} column {error.colno}"
         ) from None
+    import nbformat  # on first use: importing it costs a second of a notebook's first cell
+
     return nbformat.from_dict(_checked(data, name))
 
 
@@ -87,6 +91,8 @@ def _checked(data: object, name: str) -> dict:
         raise NotebookError(f"{name!r} is not a notebook: it has no 'nbformat' version number")
     if version < 4:
         try:
+            import nbformat
+
             data = nbformat.convert(nbformat.from_dict(data), 4)
         except Exception as error:
             raise NotebookError(

@@ -453,6 +453,19 @@ def array_text(array) -> str:
 # --- records, stats, traces ---------------------------------------------------------------
 
 
+def scroll_box(content: str) -> str:
+    """`content` (HTML) in a box that scrolls sideways when it is wider than the output, with
+    a "scroll →" hint above it: a wide table is never cut off.
+
+    >>> scroll_box("<table></table>").count("overflow-x:auto")
+    1
+    """
+    return (
+        "<div style='font-size:11px;color:#777;text-align:right'>scroll &rarr;</div>"
+        f"<div style='overflow-x:auto;max-width:100%'>{content}</div>"
+    )
+
+
 def record_html(record: object, layout: tuple[int, int] | None = None) -> str:
     """`record` (an event, a record, a stats object) as an HTML table of field | value.
 
