@@ -461,7 +461,7 @@ def scroll_box(content: str) -> str:
     1
     """
     return (
-        "<div style='font-size:11px;color:#777;text-align:right'>scroll &rarr;</div>"
+        "<div style='font-size:11px;color:#777;text-align:right'>scroll →</div>"
         f"<div style='overflow-x:auto;max-width:100%'>{content}</div>"
     )
 

@@ -20,7 +20,7 @@ from .model import StepModel
 from .relight import RelightView, light_direction, relight_widget
 from .scan import ScanConversionView, scan_conversion_stepper
 from .scanline_visibility import ScanlineVisibilityView, scanline_visibility_stepper
-from .static import plot_scan
+from .static import SamplingView, plot_scan, sampling_view
 from .stepper import Stepper, View, figure_widget, redraw_time, refresh_figure
 from .surfaces import (
     HorizonView,
@@ -31,7 +31,7 @@ from .surfaces import (
     plot_mismatch,
     plot_results,
 )
-from .viewing import ViewingPipelineView
+from .viewing import ViewingPipelineView, viewing_stepper
 from .visibility import algorithm_names, compare_visibility, taxonomy_table
 from .warnock import WarnockView, warnock_stepper
 from .zbuffer import InterpolationView, ZBufferView, interpolation_stepper, zbuffer_stepper
@@ -84,11 +84,14 @@ __all__ = [
     "plot_mismatch",
     "plot_results",
     "plot_scan",
+    "SamplingView",
+    "sampling_view",
     "redraw_time",
     "refresh_figure",
     "scan_conversion_stepper",
     "scanline_visibility_stepper",
     "taxonomy_table",
+    "viewing_stepper",
     "warnock_stepper",
     "zbuffer_stepper",
 ]

@@ -16,7 +16,8 @@ from matplotlib.patches import Rectangle
 from ..abuffer.masks import DEFAULT_MASK, mask_to_grid, popcount
 from ..pipeline import RenderResult
 from ..trace import Trace
-from ._common import html_table, new_figure, say, status_label, swatch
+from ..trace.display import scroll_box
+from ._common import WIDEST, fmt, html_table, new_figure, say, status_label, swatch
 from .stepper import Stepper, figure_widget, refresh_figure
 
 FRAGMENT_COLUMNS = ("#", "z", "zmax", "area", "bits", "color", "opacity", "object")
@@ -37,6 +38,15 @@ def fragment_table(fragments, layout: str) -> str:
     )
 
 
+def _held(kind: str, fragments) -> str:
+    """What a pixelstruct holds, in words."""
+    if kind == "empty" or not fragments:
+        return "nothing"
+    if kind == "simple":
+        return "one complete opaque fragment"
+    return f"a list of {len(fragments)} fragment{'s' * (len(fragments) != 1)}"
+
+
 class FragmentInsertionView:
     """One ``fragment_inserted`` event: the case, the incoming fragment, before and after.
 
@@ -44,11 +54,46 @@ class FragmentInsertionView:
     ----------
     widget : ipywidgets.HTML
         Everything as HTML tables (empty at step 0).
+
+    Examples
+    --------
+    >>> from scanviz.trace import FragmentInserted, FragmentRecord, Trace
+    >>> half = FragmentRecord(0.5, 0.5, 0.5, 0b0011, (1.0, 0.0, 0.0), 1.0, 0)
+    >>> event = FragmentInserted(2, 3, 0, 0, half, "partial_empty", "empty", (), "list", (half,))
+    >>> print(FragmentInsertionView(Trace([event]), "4x4").narrate(1))
+    Fragment 0 of polygon 0 reaches pixel (2, 3) at z = 0.5, partial (2 of 16 sub-samples, area 0.5); the pixel held nothing and, sorted by z, now holds a list of 1 fragment.
     """
 
     def __init__(self, trace: Trace, layout: str) -> None:
         self.trace, self.layout = trace, layout
         self.widget = widgets.HTML()
+
+    def narrate(self, step: int) -> str:
+        """What insertion `step` did and why, in one sentence (step 0: the start)."""
+        if step == 0:
+            return "The start: the pixel's fragments are inserted one by one, nearest kept first."
+        event = self.trace[step - 1]
+        fragment = event.fragment
+        cols, rows = (int(v) for v in self.layout.split("x"))
+        if event.case.startswith("complete"):
+            cover = f"complete (all {cols * rows} sub-samples, area 1)"
+        else:
+            cover = (
+                f"partial ({int(popcount(fragment.mask))} of {cols * rows} sub-samples, "
+                f"area {fmt(fragment.area, 3)})"
+            )
+        merged = any(f not in event.before and f != fragment for f in event.after)
+        gone = sum(f not in event.after for f in event.before) - merged
+        notes = ["merged with a stored fragment of its surface"] * merged
+        if gone > 0:
+            notes.append(f"{gone} hidden behind a complete opaque fragment discarded")
+        done = f" ({'; '.join(notes)})" if notes else ""
+        return (
+            f"Fragment {event.index} of polygon {event.polygon} reaches pixel ({event.x}, "
+            f"{event.y}) at z = {fmt(fragment.z, 4)}, {cover}; the pixel held "
+            f"{_held(event.before_kind, event.before)} and, sorted by z, now holds "
+            f"{_held(event.after_kind, event.after)}{done}."
+        )
 
     def show(self, step: int) -> None:
         """Show the insertion done by event `step` (nothing at step 0)."""
@@ -89,7 +134,7 @@ def packer_html(event) -> str:
     return (
         f"<b>packer</b> ({event.weights} weights): color {swatch(event.color)} "
         f"{', '.join(f'{c:.4g}' for c in event.color)}, alpha {event.alpha:.4g}"
-        + html_table(PACK_COLUMNS, rows, raw=(10,))
+        + scroll_box(html_table(PACK_COLUMNS, rows, raw=(10,)))
     )
 
 
@@ -104,6 +149,19 @@ class PackerView:
     def __init__(self, trace: Trace) -> None:
         self.trace = trace
         self.widget = widgets.HTML()
+
+    def narrate(self, step: int) -> str:
+        """What packing `step` produced and how, in one sentence (step 0: the start)."""
+        if step == 0:
+            return "The start: each step packs one pixel's fragment list into a colour."
+        event = self.trace[step - 1]
+        levels = len({s.level for s in event.steps})
+        return (
+            f"Pixel ({event.x}, {event.y}) is packed over {levels} fragment level"
+            f"{'s' * (levels != 1)} ({len(event.steps)} regions, {event.weights} weights): each "
+            "fragment counts for the sub-samples it covers that nothing in front of it hides, "
+            f"giving colour {fmt(tuple(event.color), 3)} and alpha {fmt(event.alpha, 3)}."
+        )
 
     def show(self, step: int) -> None:
         """Show the pixel packed by event `step` (nothing at step 0)."""
@@ -181,7 +239,9 @@ class ABufferInspector:
         self.figure, self.ax = fig, ax
 
         cols, rows = (int(v) for v in self.layout.split("x"))
-        grid_fig, grid_axes = new_figure(MAX_GRIDS, width=1.6 * MAX_GRIDS, height=1.9)
+        grid_fig, grid_axes = new_figure(
+            MAX_GRIDS, width=WIDEST, height=WIDEST / MAX_GRIDS + 0.4, per_row=MAX_GRIDS
+        )
         self.grids = []
         for grid_ax in grid_axes:
             self.grids.append(
@@ -199,6 +259,7 @@ class ABufferInspector:
             grid_ax.set_yticks(range(rows + 1), labels=[])
             grid_ax.tick_params(length=0)
             grid_ax.grid(color="0.6", lw=0.5)
+            grid_ax.set_title("#0 z=0.0000", fontsize=9)  # room for the titles `_show_grids` sets
         grid_fig.tight_layout()
         self.grid_figure, self.grid_axes = grid_fig, grid_axes
 
@@ -208,13 +269,15 @@ class ABufferInspector:
             box.observe(lambda _: self._pixel_changed(), names="value")
         self.status = status_label()
         self.fragments, self.packer = widgets.HTML(), widgets.HTML()
+        self.fragments.layout = {"min_width": "0", "flex": "1 1 30em", "margin": "0 0 0 12px"}
         self.insertions: Stepper | None = None
         self._insertions_box = widgets.VBox()
         self._canvas, self._grid_canvas = figure_widget(fig), figure_widget(grid_fig)
         self.widget = widgets.VBox(
             [
                 widgets.HBox([self.x_box, self.y_box, self.status]),
-                widgets.HBox([self._canvas, widgets.VBox([self.fragments, self.packer])]),
+                widgets.HBox([self._canvas, self.fragments], layout={"flex_flow": "row wrap"}),
+                self.packer,
                 widgets.HTML("<b>pixel masks</b> (sub-sample (i, j) is bit j * cols + i)"),
                 self._grid_canvas,
                 widgets.HTML("<b>insertions</b> into this pixel's pixelstruct"),
@@ -276,5 +339,5 @@ class ABufferInspector:
             grid_ax.set_visible(k < len(fragments))
             if k < len(fragments):
                 image.set_data(mask_to_grid(fragments[k].mask, self.layout))
-                grid_ax.set_title(f"#{k} z={fragments[k].z:.4g}", fontsize=8)
+                grid_ax.set_title(f"#{k} z={fragments[k].z:.4g}", fontsize=9)
         refresh_figure(self.grid_figure, self._grid_canvas)

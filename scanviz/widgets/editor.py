@@ -13,6 +13,7 @@ import numpy as np
 
 from ..geometry import Polygon
 from ..raster import scan_convert
+from ..trace.display import scroll_box
 from ._common import html_table, new_figure, say, status_label
 from .stepper import coverage_image, figure_widget, refresh_figure
 
@@ -54,7 +55,7 @@ class PolygonEditor:
     width, height : int
         Raster size.
     sample : {"corner", "center"}
-        Passed to `scan_convert`.
+        Passed to `scan_convert`; where the sample dots are drawn.
 
     Attributes
     ----------
@@ -69,6 +70,9 @@ class PolygonEditor:
         The last accepted vertices.
     coverage : matplotlib AxesImage
         Its array is ``result.mask``.
+    samples : SampleDots or None
+        Each pixel's sample point, filled where ``result.mask`` is set
+        (None above `DOTS_LIMIT` pixels a side).
     edge_table, active_edges : ipywidgets.HTML
         The edge table (``edge_table_built``) and the AET of every row (``aet_sorted``).
 
@@ -86,9 +90,13 @@ class PolygonEditor:
     def __init__(self, vertices, width: int, height: int, *, sample: str = "corner") -> None:
         self.width, self.height, self.sample = int(width), int(height), sample
         fig, (ax,) = new_figure(1, width=5.0, height=5.0 * height / max(width, height) + 0.4)
-        self.coverage = coverage_image(ax, np.zeros((height, width), bool))
-        (self.outline,) = ax.plot([], [], color="crimson", lw=1.5)
-        (self.handles,) = ax.plot([], [], "o", color="crimson", ms=6)
+        self.coverage, self.samples = coverage_image(
+            ax, np.zeros((height, width), bool), sample=sample
+        )
+        (self.outline,) = ax.plot([], [], color="crimson", lw=1.5, zorder=4)
+        (self.handles,) = ax.plot(
+            [], [], "o", color="crimson", ms=6, zorder=5
+        )  # over the sample dots
         ax.set_xlim(-0.5, width + 0.5)
         ax.set_ylim(-0.5, height + 0.5)
         ax.set_aspect("equal")
@@ -110,11 +118,14 @@ class PolygonEditor:
         self.error = status_label()
         self.edge_table, self.active_edges = widgets.HTML(), widgets.HTML()
         self._canvas = figure_widget(fig)
+        tables = widgets.VBox(
+            [self.edge_table, self.active_edges], layout={"min_width": "0", "flex": "1 1 30em"}
+        )
         self.widget = widgets.VBox(
             [
                 self.text,
                 self.error,
-                widgets.HBox([self._canvas, widgets.VBox([self.edge_table, self.active_edges])]),
+                widgets.HBox([self._canvas, tables], layout={"flex_flow": "row wrap"}),
             ]
         )
         self.result = None
@@ -141,22 +152,35 @@ class PolygonEditor:
         self.outline.set_data(closed[:, 0], closed[:, 1])
         self.handles.set_data(self.vertices[:, 0], self.vertices[:, 1])
         self.coverage.set_data(self.result.mask)
+        if self.samples is not None:
+            self.samples.show(self.result.mask)
         table = self.result.trace.of_kind("edge_table_built")
-        self.edge_table.value = "<b>edge table</b>" + html_table(
-            EDGE_COLUMNS,
-            [
-                (e.edge, (e.x0, e.y0), (e.x1, e.y1), e.bucket, e.row_end, e.x, e.dxdy, e.winding)
-                for event in table
-                for e in event.edges
-                if not e.kept_for_topology
-            ],
+        self.edge_table.value = "<b>edge table</b>" + scroll_box(
+            html_table(
+                EDGE_COLUMNS,
+                [
+                    (
+                        e.edge,
+                        (e.x0, e.y0),
+                        (e.x1, e.y1),
+                        e.bucket,
+                        e.row_end,
+                        e.x,
+                        e.dxdy,
+                        e.winding,
+                    )
+                    for event in table
+                    for e in event.edges
+                    if not e.kept_for_topology
+                ],
+            )
         )
         rows = [
             (event.y, ", ".join(f"e{a.edge}: x={a.x:.4g}" for a in event.entries), event.swaps)
             for event in self.result.trace.of_kind("aet_sorted")
         ]
-        self.active_edges.value = "<b>active edge table per row</b>" + html_table(
-            ("y", "AET (sorted by x)", "swaps"), rows
+        self.active_edges.value = "<b>active edge table per row</b>" + scroll_box(
+            html_table(("y", "AET (sorted by x)", "swaps"), rows)
         )
         refresh_figure(self.figure, self._canvas)
 

@@ -25,6 +25,7 @@ from ..conventions import sample_offset
 from ..geometry import as_coordinates
 from ..shading.fast_phong import ShadedTriangle, exact_phong_triangle, fast_phong_triangle
 from ..trace import Recorder, Trace
+from ..trace.display import scroll_box
 from ._common import WIDEST, fmt, html_table, new_figure, say, status_label, swatch
 from .stepper import Stepper, draw_pixel_grid, figure_widget, first_steps, refresh_figure
 
@@ -331,15 +332,6 @@ class FastPhongView:
             f"{s.specular}; the table has {len(s.table)} levels<br>"
             + html_table(("quadratic", *TERMS), rows)
         )
-
-
-def scroll_box(content: str) -> str:
-    """`content` (HTML) in a box that scrolls sideways when it is wider than the output, with a
-    "scroll →" hint above it (a wide table is never cut off)."""
-    return (
-        "<div style='font-size:11px;color:#777;text-align:right'>scroll &rarr;</div>"
-        f"<div style='overflow-x:auto;max-width:100%'>{content}</div>"
-    )
 
 
 def _quadratics(pixel) -> tuple[tuple[float, ...], tuple[float, ...]]:

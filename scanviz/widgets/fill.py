@@ -17,8 +17,10 @@ from matplotlib.patches import Rectangle
 from ..geometry import Polygon
 from ..raster.fill import ColourWash, Pattern, Solid, VertexColours, fill_polygon
 from ..trace import Recorder, Trace
-from ._common import new_figure, say, status_label
+from ._common import fmt, new_figure, say, status_label
+from .scan import ScanNarrator
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
+from .zbuffer import narrate_interpolation
 
 UNFILLED = (0.85, 0.85, 0.85)  # samples no span has reached yet
 INCREMENTAL_KINDS = ("polygon_setup", "edge_values", "span_values")
@@ -37,6 +39,8 @@ class FillView:
         The final image.
     fill : Solid, Pattern, ColourWash or VertexColours
     note : str, optional
+    sample : {"corner", "center"}
+        The sample mode the fill ran with (what the narration says of samples).
 
     Attributes
     ----------
@@ -48,10 +52,22 @@ class FillView:
     text : ipywidgets.HTML
         The span: its row and pixels, and for the incremental fills C at its
         start and dC per pixel.
+
+    Examples
+    --------
+    >>> from scanviz.raster import Solid
+    >>> stepper = fill_stepper([(1, 1), (6, 1), (1, 5)], 8, 6, Solid((1.0, 0.5, 0.0)))
+    >>> view = stepper.views[0]
+    >>> step = 1 + next(i for i, e in enumerate(view.trace) if e.kind == "span")
+    >>> print(view.narrate(step))
+    Row y = 1: pixels 1 ≤ x < 6 are filled: their samples x = 1 … 5 lie between the crossings 1 (e2) and 6 (e1), where the winding count is +1, so inside; each gets the colour (1, 0.5, 0).
     """
 
-    def __init__(self, polygon, trace: Trace, image: np.ndarray, fill, *, note: str = "") -> None:
+    def __init__(
+        self, polygon, trace: Trace, image: np.ndarray, fill, *, note: str = "", sample="corner"
+    ) -> None:
         self.trace, self.image, self.fill = trace, image, fill
+        self.narrator = ScanNarrator(trace, sample)
         # The incremental fills' spans are their span_values; solid and pattern fills', span events.
         self.kind = "span_values" if isinstance(fill, ColourWash | VertexColours) else "span"
         self.spans = [e for e in trace if e.kind == self.kind]
@@ -73,8 +89,25 @@ class FillView:
         self.text, self.note = widgets.HTML(), status_label()
         say(self.note, note)
         self._canvas = figure_widget(fig)
-        self.widget = widgets.VBox([self.note, widgets.HBox([self._canvas, self.text])])
+        self.text.layout = {"min_width": "0", "flex": "1 1 20em", "margin": "0 0 0 12px"}
+        row = widgets.HBox([self._canvas, self.text], layout={"flex_flow": "row wrap"})
+        self.widget = widgets.VBox([self.note, row])
         self.show(0)
+
+    def narrate(self, step: int) -> str:
+        """What event `step` did and why, in one sentence (step 0: the start)."""
+        if step == 0:
+            return "The start: nothing is filled yet."
+        event = self.trace[step - 1]
+        if event.kind in INCREMENTAL_KINDS:
+            return narrate_interpolation(event, "C")
+        sentence = self.narrator.narrate(step)
+        if event.kind != "span":
+            return sentence
+        if isinstance(self.fill, Pattern):
+            h, w = self.fill.tile.shape[:2]
+            return sentence[:-1] + f"; each takes tile pixel ((x − x0) mod {w}, (y − y0) mod {h})."
+        return sentence[:-1] + f"; each gets the colour {fmt(tuple(self.fill.color), 3)}."
 
     def show(self, step: int) -> None:
         """Show the image after the spans among the first `step` events."""
@@ -102,7 +135,7 @@ class FillView:
             start = ", ".join(f"{v:.4f}" for v in span.values)
             step = ", ".join(f"{v:+.4f}" for v in span.dvdx)
             return head + (
-                f"crossings x = {span.x_left:.3f} .. {span.x_right:.3f}<br>"
+                f"crossings x = {span.x_left:.3f} … {span.x_right:.3f}<br>"
                 f"C at x = {span.x_start}: ({html.escape(start)})<br>"
                 f"dC per pixel: ({html.escape(step)})<br>"
                 "<i>each pixel: C &larr; C + dC (one addition per channel)</i>"
@@ -149,5 +182,7 @@ def fill_stepper(polygon, width: int, height: int, fill=None, **options) -> Step
     recorder = Recorder(kinds=INCREMENTAL_KINDS) if incremental else Recorder()
     result = fill_polygon(polygon, width, height, fill, trace=recorder, **options)
     trace, note = first_steps(result.trace, "events")
-    view = FillView(polygon, trace, result.image, fill, note=note)
+    view = FillView(
+        polygon, trace, result.image, fill, note=note, sample=options.get("sample", "corner")
+    )
     return Stepper(trace, [view], title="fill variants: one span at a time")

@@ -15,11 +15,18 @@ from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, sample_
 from ..geometry import Polygon
 from ..raster import scan_convert
 from ..trace import AetSorted, Trace
+from ..trace.display import scroll_box
 from ..trace.table import format_number
-from ._common import html_table, new_figure
-from .stepper import Stepper, draw_pixel_grid, figure_widget, refresh_figure
+from ._common import WIDEST, html_table, new_figure
+from .stepper import (
+    SampleDots,
+    Stepper,
+    draw_pixel_grid,
+    figure_widget,
+    refresh_figure,
+)
 
-DETAIL_LIMIT = 128 * 128  # larger rasters get no per-pixel grid lines or sample dots
+DETAIL_LIMIT = 128 * 128  # larger rasters get no per-pixel grid lines
 
 
 def aet_changes(previous: AetSorted | None, current: AetSorted) -> dict[int, str]:
@@ -55,16 +62,199 @@ def aet_changes(previous: AetSorted | None, current: AetSorted) -> dict[int, str
     return changes
 
 
+def _listed(items) -> str:
+    """'a', 'a and b', 'a, b and c'."""
+    items = list(items)
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def _edge_name(record) -> str:
+    return f"e{record.edge} ({record.x0:g},{record.y0:g})→({record.x1:g},{record.y1:g})"
+
+
+class ScanNarrator:
+    """One plain sentence per scan-conversion event, read from the trace: what happened and why.
+
+    Parameters
+    ----------
+    trace : Trace
+        Events of `scanviz.raster.scanline` (a filtered trace is fine).
+    sample : {"corner", "center"}
+        The sample mode of the scan conversion (where a row's samples lie).
+
+    Attributes
+    ----------
+    row_at : list of (int, int) or None
+        For every step, the (polygon, row) reached.
+    table_at, aet_at : list of int
+        For every step, the index of the last ``edge_table_built`` and
+        ``aet_sorted`` event so far (-1 if none).
+
+    Examples
+    --------
+    >>> from scanviz import scan_convert
+    >>> trace = scan_convert([(0, 0), (4, 0), (4, 3)], 5, 3, trace=True).trace
+    >>> narrator = ScanNarrator(trace)
+    >>> narrator.narrate(2)
+    'Row y = 0: e1 (4,0)→(4,3) and e2 (0,0)→(4,3) enter the AET: row 0 is the first whose samples (y = 0) lie at or above their ymin 0.'
+    """
+
+    def __init__(self, trace: Trace, sample: str = "corner") -> None:
+        self.trace = trace
+        self.offset = sample_offset(check_choice("sample", sample, SAMPLE_MODES))
+        self.row_at: list[tuple[int, int] | None] = [None]
+        self.table_at, self.aet_at = [-1], [-1]
+        self._previous_aet: dict[int, int] = {}  # aet_sorted index -> the one before, same polygon
+        last_aet_of: dict[int, int] = {}
+        for index, event in enumerate(trace):
+            y = getattr(event, "y", None)
+            self.row_at.append(self.row_at[-1] if y is None else (event.polygon, y))
+            self.table_at.append(index if event.kind == "edge_table_built" else self.table_at[-1])
+            self.aet_at.append(index if event.kind == "aet_sorted" else self.aet_at[-1])
+            if event.kind == "aet_sorted":
+                self._previous_aet[index] = last_aet_of.get(event.polygon, -1)
+                last_aet_of[event.polygon] = index
+
+    def previous_aet(self, index: int) -> AetSorted | None:
+        """The ``aet_sorted`` event of the same polygon before the one at `index` (None if first)."""
+        previous = self._previous_aet[index]
+        return self.trace[previous] if previous >= 0 else None
+
+    def edge_records(self, step: int) -> dict:
+        """The edge table's records by edge id, as the last table up to `step` holds them."""
+        index = self.table_at[step]
+        return {} if index < 0 else {e.edge: e for e in self.trace[index].edges}
+
+    def narrate(self, step: int) -> str:
+        """What event `step` did and why, in one sentence (step 0: the start)."""
+        if step == 0:
+            return "The start: nothing is scanned yet; the first step builds the edge table."
+        event = self.trace[step - 1]
+        say = getattr(self, f"_{event.kind}", None)
+        return say(step, event) if say else event.kind.replace("_", " ") + "."
+
+    def _sample_y(self, y: int) -> str:
+        return f"{y + self.offset:g}"
+
+    def _edge_table_built(self, step, event) -> str:
+        buckets: dict[int, list[str]] = {}
+        for record in sorted(event.edges, key=lambda e: (e.bucket, e.edge)):
+            if not record.kept_for_topology:
+                buckets.setdefault(record.bucket, []).append(f"e{record.edge}")
+        placed = "; ".join(f"row {row} gets {_listed(names)}" for row, names in buckets.items())
+        kept = [
+            f"{_edge_name(e)} is "
+            + ("horizontal" if e.horizontal else "between two sample rows")
+            + ", kept only for topology"
+            for e in event.edges
+            if e.kept_for_topology
+        ]
+        return (
+            f"Polygon {event.polygon}'s edge table puts each edge in the bucket of the first "
+            f"sample row it crosses: {placed or 'no edge crosses a sample row'}"
+            + "".join(f"; {note}" for note in kept)
+            + "."
+        )
+
+    def _edges_activated(self, step, event) -> str:
+        records = self.edge_records(step)
+        entering = [records[e] for e in event.edges if e in records]
+        names = _listed([_edge_name(e) for e in entering] or [f"e{e}" for e in event.edges])
+        verb, their = ("enters", "its") if len(event.edges) == 1 else ("enter", "their")
+        if not entering:  # the trace was filtered: no edge table to read ymin from
+            return f"Row y = {event.y}: {names} {verb} the AET: this row is {their} bucket."
+        ymins = _listed(sorted({f"{e.ymin:g}" for e in entering}, key=float))
+        if all(e.bucket < event.y for e in entering):
+            return (
+                f"Row y = {event.y}: {names} {verb} the AET on the raster's first scanned row: "
+                f"{their} ymin {ymins} is below it."
+            )
+        return (
+            f"Row y = {event.y}: {names} {verb} the AET: row {event.y} is the first whose "
+            f"samples (y = {self._sample_y(event.y)}) lie at or above {their} ymin {ymins}."
+        )
+
+    def _edges_retired(self, step, event) -> str:
+        records = self.edge_records(step)
+        leaving = [records[e] for e in event.edges if e in records]
+        names = _listed([_edge_name(e) for e in leaving] or [f"e{e}" for e in event.edges])
+        verb, their = ("leaves", "its") if len(event.edges) == 1 else ("leave", "their")
+        if not leaving:  # the trace was filtered: no edge table to read ymax from
+            return f"Row y = {event.y}: {names} {verb} the AET: the row reached {their} ymax."
+        ymaxes = _listed(sorted({f"{e.ymax:g}" for e in leaving}, key=float))
+        return (
+            f"Row y = {event.y}: {names} {verb} the AET because the row's samples "
+            f"(y = {self._sample_y(event.y)}) reached {their} ymax {ymaxes}: an edge is active "
+            "only while ymin ≤ y < ymax."
+        )
+
+    def _aet_sorted(self, step, event) -> str:
+        if not event.entries:
+            return f"Row y = {event.y}: the AET is empty, so the row has nothing to fill."
+        previous = self.previous_aet(step - 1)
+        if previous is not None:
+            changes = aet_changes(previous, event)
+            entered = [f"e{e}" for e, change in changes.items() if change == "entering"]
+        else:  # the first row recorded: only an edges_activated of this row says who entered
+            activated = self.trace[step - 2] if step >= 2 else None
+            same_row = activated is not None and activated.kind == "edges_activated"
+            same_row = same_row and (activated.polygon, activated.y) == (event.polygon, event.y)
+            entered = [f"e{e}" for e in activated.edges] if same_row else []
+        stayed = previous is not None and len(event.entries) > len(entered)
+        clauses = ["the edges already active moved their x by dx/dy"] if stayed else []
+        if entered:
+            clauses.append(f"{_listed(entered)} entered")
+        order = ", ".join(f"e{e.edge} at {format_number(e.x, e.x_exact)}" for e in event.entries)
+        swaps = (
+            "already in order, no swap"
+            if event.swaps == 0
+            else f"{event.swaps} swap{'s' * (event.swaps != 1)} in the sort"
+        )
+        return f"Row y = {event.y}: {', and '.join(clauses)}; sorted by x the AET is {order} ({swaps})."
+
+    def _span(self, step, event) -> str:
+        first, last = event.x_start + self.offset, event.x_end - 1 + self.offset
+        if event.x_end - event.x_start == 1:
+            filled = f"pixel x = {event.x_start} is filled: its sample x = {first:g} lies"
+        else:
+            filled = (
+                f"pixels {event.x_start} ≤ x < {event.x_end} are filled: their samples "
+                f"x = {first:g} … {last:g} lie"
+            )
+        index = self.aet_at[step]
+        entries = self.trace[index].entries if index >= 0 else ()
+        pair = next(
+            (
+                (a, b)
+                for a, b in zip(entries, entries[1:], strict=False)
+                if a.x <= first and b.x > last
+            ),
+            None,
+        )
+        between = ""
+        if pair is not None:
+            a, b = pair
+            between = (
+                f" between the crossings {format_number(a.x, a.x_exact)} (e{a.edge}) and "
+                f"{format_number(b.x, b.x_exact)} (e{b.edge}),"
+            )
+        return (
+            f"Row y = {event.y}: {filled}{between} where the winding count is "
+            f"{event.winding:+d}, so inside."
+        )
+
+
 class ScanConversionView:
     """A scan conversion trace, one step at a time.
 
     Left: the pixel grid with the image so far (the spans emitted up to the
-    step), sample points (dark when covered), the polygon, the active edges,
-    the current scanline and the span just emitted. Right: the final image.
-    Beside them, the edge table and the active edge table of the current
-    row; table rows that changed at this step are highlighted: edges
-    entering or retiring, and on ``aet_sorted`` the entries that entered,
-    moved in the sort or whose x changed.
+    step), sample points (filled dark when covered, hollow grey when not),
+    the polygon, the active edges, the current scanline and the span just
+    emitted. Right: the final image. Below them, the edge table and the
+    active edge table of the current row; table rows that changed at this
+    step are highlighted: edges entering or retiring, and on ``aet_sorted``
+    the entries that entered, moved in the sort or whose x changed.
+    ``narrate(step)`` says in one sentence what the step did and why.
 
     Parameters
     ----------
@@ -83,8 +273,8 @@ class ScanConversionView:
     figure : matplotlib Figure
     image : AxesImage
         Coverage counts so far, ``trace.image_at(step, width, height)``.
-    samples : (Line2D, Line2D) or None
-        The covered and the uncovered sample points (None above `DETAIL_LIMIT` pixels).
+    samples : SampleDots or None
+        The sample points, covered or not (None above `DOTS_LIMIT` pixels a side).
     scanline : Line2D
         Horizontal line at the current row's sample y; hidden before any row.
     et_html, aet_html : ipywidgets.HTML
@@ -100,6 +290,8 @@ class ScanConversionView:
     >>> view.show(3)
     >>> view.scanline.get_ydata(), view.highlights
     ([0.0, 0.0], {2: 'entering', 1: 'entering'})
+    >>> view.narrate(4)
+    'Row y = 0: pixels 0 ≤ x < 4 are filled: their samples x = 0 … 3 lie between the crossings 0 (e2) and 4 (e1), where the winding count is +1, so inside.'
     >>> view.widget  # doctest: +SKIP
     """
 
@@ -111,26 +303,22 @@ class ScanConversionView:
 
         self.polygon = Polygon(polygon)
         self.width, self.height = check_raster_size(width, height)
-        self.offset = sample_offset(check_choice("sample", sample, SAMPLE_MODES))
         if not isinstance(trace, Trace):
             raise TypeError(f"'trace' must be a scanviz Trace; got {trace!r}")
         self.trace = trace
+        self.narrator = ScanNarrator(trace, sample)
+        self.offset = self.narrator.offset
         self.highlights: dict[int, str] = {}
-        self._index_steps()
 
         final = trace.image_at(len(trace), self.width, self.height)
-        size = min(0.4 * max(self.width, self.height) + 1, 5.5)
-        self.figure, (axes, final_axes) = new_figure(2, width=2 * size, height=size, dpi=80)
+        # Two square panels side by side, as large as a notebook's width allows.
+        panel = min(0.4 * max(self.width, self.height) + 1, (WIDEST - 0.4) / 2)
+        self.figure, (axes, final_axes) = new_figure(2, width=2 * panel + 0.4, height=panel + 0.4)
         shown = {"origin": "lower", "cmap": "Blues", "vmin": 0, "vmax": 1.6 * max(final.max(), 1)}
         shown |= {"extent": (0, self.width, 0, self.height), "interpolation": "nearest"}
         self.image = axes.imshow(np.zeros_like(final), **shown)
         final_axes.imshow(final, **shown)
-        self.samples = None  # (covered, not covered) sample dots: markers draw fast in Agg
         if self.width * self.height <= DETAIL_LIMIT:
-            self.samples = (
-                axes.plot([], [], ".", color="navy", markersize=5, zorder=3)[0],
-                axes.plot([], [], ".", color="0.6", markersize=4, zorder=3)[0],
-            )
             for ax in (axes, final_axes):
                 draw_pixel_grid(ax, (0, self.width, 0, self.height))
         for ax in (axes, final_axes):
@@ -145,43 +333,32 @@ class ScanConversionView:
         self.span = Rectangle((0, 0), 0, 1, fill=False, edgecolor="red", linewidth=2, zorder=7)
         axes.add_patch(self.span)
         self.title = axes.set_title("")
-        self.figure.subplots_adjust(left=0.06, right=0.98, bottom=0.07, top=0.93, wspace=0.12)
+        self.figure.subplots_adjust(left=0.06, right=0.98, bottom=0.08, top=0.92, wspace=0.15)
+        shape = (self.height, self.width)
+        self.samples = SampleDots(axes, shape, sample) if SampleDots.fit(shape) else None
 
         self.et_html, self.aet_html = widgets.HTML(), widgets.HTML()
         self._canvas = figure_widget(self.figure)
-        # Tables under the figures: side by side they get squeezed off a notebook's width.
-        tables = widgets.HBox([self.et_html, self.aet_html], layout={"margin": "8px 0 0 0"})
-        self.aet_html.layout.margin = "0 0 0 24px"
+        # Tables under the figures, wrapping onto two lines when the notebook is narrow.
+        tables = widgets.HBox(
+            [self.et_html, self.aet_html], layout={"margin": "8px 0 0 0", "flex_flow": "row wrap"}
+        )
+        self.et_html.layout.margin = "0 24px 8px 0"
         self.widget = widgets.VBox([self._canvas, tables])
         self.show(0)
 
-    def _index_steps(self) -> None:
-        """For every step: the current (polygon, row), the last edge table and the last AET."""
-        self._rows: list[tuple[int, int] | None] = [None]
-        self._tables, self._aets = [-1], [-1]
-        self._previous_aet: dict[int, int] = {}  # aet_sorted index -> the one before, same polygon
-        last_aet_of: dict[int, int] = {}
-        for index, event in enumerate(self.trace):
-            if hasattr(event, "y"):
-                self._rows.append((getattr(event, "polygon", 0), event.y))
-            else:
-                self._rows.append(self._rows[-1])
-            self._tables.append(index if event.kind == "edge_table_built" else self._tables[-1])
-            self._aets.append(index if event.kind == "aet_sorted" else self._aets[-1])
-            if event.kind == "aet_sorted":
-                self._previous_aet[index] = last_aet_of.get(event.polygon, -1)
-                last_aet_of[event.polygon] = index
+    def narrate(self, step: int) -> str:
+        """What event `step` did and why, in one sentence (see `ScanNarrator`)."""
+        return self.narrator.narrate(step)
 
     def show(self, step: int) -> None:
         """Show the state after the first `step` events (artists and tables updated in place)."""
         image = self.trace.image_at(step, self.width, self.height)
         self.image.set_data(image)
         if self.samples is not None:
-            for dots, samples in zip(self.samples, (image > 0, image == 0), strict=True):
-                ys, xs = np.nonzero(samples)
-                dots.set_data(xs + self.offset, ys + self.offset)
+            self.samples.show(image > 0)
         event = self.trace[step - 1] if step else None
-        row = self._rows[step]
+        row = self.narrator.row_at[step]
         self.scanline.set_visible(row is not None)
         if row is not None:
             self.scanline.set_ydata([row[1] + self.offset] * 2)
@@ -194,7 +371,7 @@ class ScanConversionView:
         refresh_figure(self.figure, self._canvas)
 
     def _edge_table(self, step: int, event) -> str:
-        index = self._tables[step]
+        index = self.narrator.table_at[step]
         if index < 0:
             return "<b>edge table</b>: not built yet"
         changes = {}
@@ -220,15 +397,15 @@ class ScanConversionView:
         header = ("edge", "lower", "upper", "bucket", "ymax", "x", "dx/dy", "winding", "")
         states = ["current" if e.edge in changes else "" for e in edges]
         caption = f"<b>edge table</b> of polygon {table.polygon} (bucket = ceil(ymin))"
-        return caption + html_table(header, rows, states=states)
+        return caption + scroll_box(html_table(header, rows, states=states))
 
     def _active_edge_table(self, step: int, event, row) -> str:
-        index = self._aets[step]
+        index = self.narrator.aet_at[step]
         aet = self.trace[index] if index >= 0 else None
         if aet is not None and (aet.polygon, aet.y) == row:
             caption = f"<b>AET of row {aet.y}</b> ({aet.swaps} swaps in the sort)"
             self.highlights = (
-                aet_changes(self._previous_aet_event(index), aet) if index == step - 1 else {}
+                aet_changes(self.narrator.previous_aet(index), aet) if index == step - 1 else {}
             )
         else:  # between rows: the last AET, with the edges leaving it marked
             retiring = event.edges if event is not None and event.kind == "edges_retired" else ()
@@ -237,7 +414,7 @@ class ScanConversionView:
             if row is not None and aet is not None:
                 caption += f", before the update for row {row[1]}"
         entries = aet.entries if aet is not None else ()
-        self._show_active_edges(entries, self._tables[step])
+        self._show_active_edges(entries, step)
         rows = [
             (
                 f"e{e.edge}",
@@ -253,12 +430,8 @@ class ScanConversionView:
         states = ["current" if e.edge in self.highlights else "" for e in entries]
         return caption + html_table(header, rows, states=states)
 
-    def _previous_aet_event(self, index: int) -> AetSorted | None:
-        previous = self._previous_aet[index]
-        return self.trace[previous] if previous >= 0 else None
-
-    def _show_active_edges(self, entries, table_index: int) -> None:
-        records = {} if table_index < 0 else {e.edge: e for e in self.trace[table_index].edges}
+    def _show_active_edges(self, entries, step: int) -> None:
+        records = self.narrator.edge_records(step)
         self.active_edges.set_segments(
             [
                 [(r.x0, r.y0), (r.x1, r.y1)]
@@ -270,8 +443,8 @@ class ScanConversionView:
 
 def _topology_note(edge) -> str:
     if edge.horizontal:
-        return "horizontal, kept for topology"
-    return "crosses no sample row, kept for topology" if edge.kept_for_topology else ""
+        return "horizontal: crosses no row, never active"
+    return "between two rows: crosses none, never active" if edge.kept_for_topology else ""
 
 
 def scan_conversion_stepper(polygon: object, width: int, height: int, **scan_options) -> Stepper:

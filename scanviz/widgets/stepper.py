@@ -17,6 +17,7 @@ from typing import Protocol, runtime_checkable
 import ipywidgets as widgets
 import numpy as np
 
+from ..conventions import sample_offset
 from ..trace import Trace
 from .model import StepModel
 
@@ -98,10 +99,85 @@ def draw_pixel_grid(axes, extent: tuple[int, int, int, int]) -> None:
     axes.add_collection(LineCollection(lines, colors="0.85", linewidths=0.5, zorder=1.5))
 
 
-def coverage_image(axes, covered: np.ndarray, *, alpha: float | None = None):
+DOTS_LIMIT = 64  # pixels a side: beyond it a sample dot would be a speck, so none is drawn
+
+
+class SampleDots:
+    """Each pixel's sample point as a dot over its square: inside filled dark, outside hollow grey.
+
+    Pixel (x, y) is sampled at (x + offset, y + offset): its lower-left
+    corner with ``sample="corner"``, its centre with ``sample="center"``. The
+    dots make the offset of a fill visible as the consequence of where the
+    pixels are sampled.
+
+    Parameters
+    ----------
+    axes : matplotlib Axes
+    shape : (int, int)
+        (height, width) of the raster.
+    sample : {"corner", "center"}
+    origin : (int, int), optional
+        The pixel at the raster's lower-left.
+
+    Attributes
+    ----------
+    inside, outside : matplotlib Line2D
+        The dots of the samples inside and outside, updated by `show`.
+    offset : float
+        Where a pixel's sample lies from its lower-left corner (0 or 0.5);
+        set it to move the dots to another sample mode at the next `show`.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> with plt.ioff():
+    ...     figure, axes = plt.subplots()
+    >>> dots = SampleDots(axes, (2, 3), "center")
+    >>> dots.show(np.array([[True, False, False], [False, False, True]]))
+    >>> dots.inside.get_data()
+    (array([0.5, 2.5]), array([0.5, 1.5]))
+    """
+
+    def __init__(self, axes, shape, sample: str = "corner", *, origin=(0, 0)) -> None:
+        self.offset = sample_offset(sample)
+        self.origin = origin
+        size = _dot_size(axes, max(shape))
+        (self.inside,) = axes.plot([], [], "o", ms=size, color="#08306b", ls="none", zorder=3)
+        (self.outside,) = axes.plot(
+            [], [], "o", ms=size, mfc="none", mec="0.45", mew=0.8, ls="none", zorder=3
+        )
+
+    def show(self, inside: np.ndarray) -> None:
+        """Colour the dots by `inside`, a (height, width) array of bool."""
+        inside = np.asarray(inside, bool)
+        for dots, where in ((self.inside, inside), (self.outside, ~inside)):
+            ys, xs = np.nonzero(where)
+            x0, y0 = self.origin
+            dots.set_data(xs + x0 + self.offset, ys + y0 + self.offset)
+
+    @staticmethod
+    def fit(shape) -> bool:
+        """Whether a raster of `shape` is small enough to show its sample dots."""
+        return max(shape) <= DOTS_LIMIT
+
+
+def _dot_size(axes, pixels: int) -> float:
+    """A marker size in points: about a fifth of a pixel square as the axes first lays it out."""
+    box = axes.get_position()
+    inches = min(box.width * axes.figure.get_figwidth(), box.height * axes.figure.get_figheight())
+    return float(np.clip(0.22 * 72 * inches / max(pixels, 1), 2.5, 6.0))
+
+
+def coverage_image(axes, covered: np.ndarray, *, alpha: float | None = None, sample=None):
     """Show a (height, width) coverage array as filled pixel squares on a pixel grid (y up).
 
-    Returns the AxesImage, to be updated with ``set_data``.
+    With `sample` ("corner" or "center") each pixel's sample point is drawn
+    too, as `SampleDots` (when the raster is at most `DOTS_LIMIT` a side).
+
+    Returns
+    -------
+    (AxesImage, SampleDots or None)
+        Update them with ``image.set_data(covered)`` and ``dots.show(covered)``.
     """
     height, width = covered.shape
     image = axes.imshow(
@@ -115,7 +191,11 @@ def coverage_image(axes, covered: np.ndarray, *, alpha: float | None = None):
         interpolation="nearest",
     )
     draw_pixel_grid(axes, (0, width, 0, height))
-    return image
+    dots = None
+    if sample is not None and SampleDots.fit(covered.shape):
+        dots = SampleDots(axes, covered.shape, sample)
+        dots.show(covered)
+    return image, dots
 
 
 SPEEDS = {"slow": 900, "normal": 300, "fast": 80}  # milliseconds between steps when playing
@@ -234,7 +314,9 @@ class Stepper:
         self.label.value = f"step {step} / {len(self.model)}: {kind}"
         sentence = next(filter(None, (narration_of(view, step) for view in self.views)), "")
         if not sentence:
-            sentence = "The start: nothing has happened yet." if not step else kind.replace("_", " ")
+            sentence = (
+                "The start: nothing has happened yet." if not step else kind.replace("_", " ")
+            )
         self.narration.value = f"<span style='font-size:13px'>{html.escape(sentence)}</span>"
         self.prev_button.disabled = step == 0
         self.next_button.disabled = step == len(self.model)

@@ -14,10 +14,24 @@ from matplotlib.patches import Rectangle
 
 from ..pipeline import RenderResult, render
 from ..trace import Recorder, Trace
-from ._common import html_table, new_figure, parse_pixel, say, status_label
+from ..trace.display import scroll_box
+from ._common import WIDEST, fmt, html_table, new_figure, parse_pixel, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
 
 HISTORY_COLUMNS = ("step", "polygon", "incoming z", "stored z", "test")
+
+
+def _distinct(a: float, b: float) -> tuple[str, str]:
+    """`a` and `b` to the fewest significant digits (at least 2) that tell them apart.
+
+    >>> _distinct(0.4213, 0.6), _distinct(0.50012, 0.50031)
+    (('0.42', '0.6'), ('0.5001', '0.5003'))
+    """
+    for digits in range(2, 17):
+        left, right = f"{a:.{digits}g}", f"{b:.{digits}g}"
+        if left != right:
+            return left, right
+    return left, right
 
 
 class ZBufferView:
@@ -33,7 +47,8 @@ class ZBufferView:
     background : (3,) array_like of float, optional
         Color of pixels nothing has been drawn on yet.
     pixel : (int, int), optional
-        The pixel whose history is shown first (default: the first one tested).
+        The pixel whose history is shown, as if the student had picked it.
+        By default the history follows the pixel tested at each step.
     region : (x_start, y_start, x_end, y_end), optional
         Outlined on the images (the region the trace was filtered to).
     note : str, optional
@@ -43,15 +58,30 @@ class ZBufferView:
     ----------
     widget : ipywidgets.VBox
     pixel_text : ipywidgets.Text
-        "x, y" of the picked pixel; clicking an image sets it.
+        "x, y" of the pixel whose history is shown; typing one (or clicking
+        an image) picks it and stops following the step.
+    follow : ipywidgets.Checkbox
+        Whether the history follows the pixel tested at each step (ticked
+        until the student picks a pixel; ticking it again follows again).
     history : ipywidgets.HTML
-        The picked pixel's depth tests; the step shown is highlighted, later ones gray.
+        The pixel's depth tests; the step shown is highlighted, later ones gray.
     note : ipywidgets.HTML
         What the trace holds when it had to be filtered or cut.
     status : ipywidgets.HTML
         Bad pixel input.
     depth_image, color_image : matplotlib AxesImage
         Their arrays are the buffers at the step shown.
+
+    Examples
+    --------
+    >>> from scanviz.scene.builtin import builtin_scene
+    >>> view = zbuffer_stepper(builtin_scene("umbc_zbuffer"), 12, 12).views[0]
+    >>> view.show(53)
+    >>> event = view.trace[52]
+    >>> view.pixel == (event.x, event.y)
+    True
+    >>> print(view.narrate(53))
+    Depth test at pixel (2, 5): polygon 2's z = 0.29 < 0.31 stored, so the new fragment is nearer and is written.
 
     Notes
     -----
@@ -84,7 +114,7 @@ class ZBufferView:
         self._background = np.asarray(background, np.float64)[:3]
         self.step = 0
 
-        fig, (ax_depth, ax_color, ax_final) = new_figure(3, width=10.5, height=3.6)
+        fig, (ax_depth, ax_color, ax_final) = new_figure(3, width=WIDEST, height=3.0)
         extent = (0, width, 0, height)
         finite = self._z[np.isfinite(self._z)]
         low, high = (finite.min(), finite.max()) if len(finite) else (0.0, 1.0)
@@ -121,6 +151,9 @@ class ZBufferView:
         fig.tight_layout()
         fig.canvas.mpl_connect("button_press_event", self._clicked)
 
+        self.follow = widgets.Checkbox(
+            value=pixel is None, description="follow the step", indent=False
+        )
         if pixel is None:
             pixel = (int(self._x[0]), int(self._y[0])) if len(self._x) else (0, 0)
         self.pixel = tuple(pixel)
@@ -129,14 +162,21 @@ class ZBufferView:
             description="pixel (x, y)",
             continuous_update=False,
         )
+        self._following = False  # True while the view itself moves pixel_text
         self.pixel_text.observe(self._pixel_typed, names="value")
+        self.follow.observe(self._follow_ticked, names="value")
         self.history = widgets.HTML()
         self.status = status_label()
         self.note = status_label()
         say(self.note, note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox(
-            [self.note, self._canvas, widgets.HBox([self.pixel_text, self.status]), self.history]
+            [
+                self.note,
+                self._canvas,
+                widgets.HBox([self.pixel_text, self.follow, self.status]),
+                self.history,
+            ]
         )
         self.show(0)
 
@@ -182,12 +222,63 @@ class ZBufferView:
         depth, polygon = self.buffers(self.step)
         self.depth_image.set_data(np.where(np.isfinite(depth), depth, np.nan))
         self.color_image.set_data(self.colors(polygon))
-        current = np.flatnonzero(self._index == self.step - 1)
-        self.current_marker.set_visible(len(current) > 0)
-        if len(current):
-            self.current_marker.set_xy((self._x[current[0]], self._y[current[0]]))
+        tested = self.tested(self.step)
+        self.current_marker.set_visible(tested is not None)
+        if tested is not None:
+            self.current_marker.set_xy(tested)
+        if self.follow.value and (tested is not None or self.step == 0) and len(self._x):
+            self._follow(tested or (int(self._x[0]), int(self._y[0])))
         self._show_history()
         refresh_figure(self.figure, self._canvas)
+
+    def tested(self, step: int) -> tuple[int, int] | None:
+        """The pixel that event `step` depth-tests (None at step 0 or for another event)."""
+        current = np.flatnonzero(self._index == step - 1)
+        return (int(self._x[current[0]]), int(self._y[current[0]])) if len(current) else None
+
+    def narrate(self, step: int) -> str:
+        """What depth test `step` decided and why, in one sentence (step 0: the start)."""
+        if step == 0:
+            return (
+                "The start: every pixel's stored depth is +∞, so the first fragment drawn "
+                "at a pixel always passes."
+            )
+        event = self.trace[step - 1]
+        if event.kind != "depth_test":
+            return event.kind.replace("_", " ") + "."
+        at = f"Depth test at pixel ({event.x}, {event.y}): "
+        if event.stored is None:
+            return at + (
+                f"nothing is stored there yet (+∞), so polygon {event.polygon}'s fragment at "
+                f"z = {event.z:.4g} is nearer and is written."
+            )
+        z, stored = _distinct(event.z, event.stored)
+        if event.passed:
+            return at + (
+                f"polygon {event.polygon}'s z = {z} < {stored} stored, so the new fragment is "
+                "nearer and is written."
+            )
+        if event.z == event.stored:
+            return at + (
+                f"polygon {event.polygon}'s z = {z} equals the {stored} stored; a tie keeps "
+                "the earlier polygon, so the new fragment is discarded."
+            )
+        return at + (
+            f"polygon {event.polygon}'s z = {z} > {stored} stored, so the new fragment is "
+            "behind and is discarded."
+        )
+
+    def _follow_ticked(self, change) -> None:
+        if change["new"]:
+            self.show(self.step)
+
+    def _follow(self, pixel: tuple[int, int]) -> None:
+        self.pixel = pixel
+        self._following = True
+        try:
+            self.pixel_text.value = f"{pixel[0]}, {pixel[1]}"
+        finally:
+            self._following = False
 
     def _show_history(self) -> None:
         x, y = self.pixel
@@ -203,7 +294,15 @@ class ZBufferView:
             states.append(
                 "current" if self._index[k] == self.step - 1 else "done" if done else "pending"
             )
-        title = f"<b>pixel ({x}, {y})</b>: {len(rows)} depth tests"
+        tested = self.tested(self.step)
+        if tested == (x, y):
+            whose = "the pixel this step tests"
+        elif self.follow.value:
+            whose = "the first pixel to be tested" if self.step == 0 else "no test at this step"
+        else:
+            elsewhere = "" if tested is None else f"; this step tests ({tested[0]}, {tested[1]})"
+            whose = f"picked by you{elsewhere}; tick 'follow the step' to follow the tests"
+        title = f"<b>pixel ({x}, {y})</b>, {whose}: {len(rows)} depth test{'s' * (len(rows) != 1)}"
         if not rows:
             title += " in this trace (none: outside the region or not covered)"
         self.history.value = title + html_table(HISTORY_COLUMNS, rows, states=states)
@@ -213,6 +312,8 @@ class ZBufferView:
         self.pixel_text.value = f"{int(x)}, {int(y)}"
 
     def _pixel_typed(self, change) -> None:
+        if self._following:
+            return
         try:
             x, y = parse_pixel(change["new"])
         except ValueError as error:
@@ -224,6 +325,8 @@ class ZBufferView:
             return
         say(self.status, "")
         self.pixel = (x, y)
+        with self.follow.hold_trait_notifications():
+            self.follow.value = False  # the student chose: keep this pixel while stepping
         self._show_history()
         refresh_figure(self.figure, self._canvas)
 
@@ -321,6 +424,55 @@ def _value_names(setup) -> list[str]:
     return [f"a{k}" for k in range(count)]
 
 
+def _values(values) -> str:
+    return "(" + ", ".join(fmt(v, 3) for v in values) + ")"
+
+
+def narrate_interpolation(event, name: str = "values") -> str:
+    """One sentence for a ``polygon_setup``, ``edge_values`` or ``span_values`` event.
+
+    `name` is what the interpolated values are called ("values", or "C" for
+    a fill's colour).
+
+    Examples
+    --------
+    >>> from scanviz.trace import SpanValues
+    >>> narrate_interpolation(SpanValues(0, 3, 2, 6, 1.5, 5.25, 0.5, 0.125, (1.0,), (-0.25,)))
+    'Row y = 3: span 2 ≤ x < 6 between the crossings x = 1.5 and 5.25 starts with z = 0.5 and values (1) at x = 2, then adds dz/dx = 0.125 and (-0.25) per pixel: one addition each, no multiplication.'
+    """
+    if event.kind == "polygon_setup":
+        count = len(event.values[0]) if event.values else 0
+        plane = (
+            "its plane is seen edge-on (no dz/dx)"
+            if event.dzdx is None
+            else f"its plane gives dz/dx = {fmt(event.dzdx, 3)} and dz/dy = {fmt(event.dzdy, 3)}"
+        )
+        carried = f"each vertex carries {count} {name}" if count else "no vertex values"
+        divided = ", each divided by w so that they step linearly on screen" * event.perspective
+        return (
+            f"Polygon {event.polygon} is set up: {len(event.vertices)} vertices; {plane}; "
+            f"{carried}{divided}."
+        )
+    if event.kind == "edge_values":
+        edges = "; ".join(
+            f"e{e.edge} at x = {fmt(e.x, 4)} with {_values(e.values)}" for e in event.entries
+        )
+        return (
+            f"Row y = {event.y}: each active edge's x and {name} moved up to this row by their "
+            f"d/dy: {edges or 'no active edge'}."
+        )
+    if event.kind == "span_values":
+        z = f"z = {fmt(event.z, 4)} and " if name == "values" else ""
+        dz = f"dz/dx = {fmt(event.dzdx, 3)} and " if name == "values" else ""
+        return (
+            f"Row y = {event.y}: span {event.x_start} ≤ x < {event.x_end} between the crossings "
+            f"x = {fmt(event.x_left, 4)} and {fmt(event.x_right, 4)} starts with {z}{name} "
+            f"{_values(event.values)} at x = {event.x_start}, then adds {dz}"
+            f"{_values(event.dvdx)} per pixel: one addition each, no multiplication."
+        )
+    return event.kind.replace("_", " ") + "."
+
+
 class InterpolationView:
     """Edge and span values of the row being scanned, and the current span on the image.
 
@@ -365,14 +517,20 @@ class InterpolationView:
         self.note = status_label()
         say(self.note, note)
         self._canvas = figure_widget(fig)
+        tables = widgets.VBox(
+            [self.setup, self.edges, self.spans], layout={"min_width": "0", "flex": "1 1 30em"}
+        )
         self.widget = widgets.VBox(
-            [
-                self.note,
-                widgets.HBox([self._canvas, widgets.VBox([self.setup, self.edges, self.spans])]),
-            ]
+            [self.note, widgets.HBox([self._canvas, tables], layout={"flex_flow": "row wrap"})]
         )
         self.step = 0
         self.show(0)
+
+    def narrate(self, step: int) -> str:
+        """What event `step` computed, in one sentence (step 0: the start)."""
+        if step == 0:
+            return "The start: no polygon is set up yet."
+        return narrate_interpolation(self.trace[step - 1])
 
     def _latest(self, kind: str, step: int):
         for event in reversed(self.trace[:step]):
@@ -395,9 +553,11 @@ class InterpolationView:
             xs = [v[0] for v in setup.vertices] + [setup.vertices[0][0]]
             ys = [v[1] for v in setup.vertices] + [setup.vertices[0][1]]
             self.outline.set_data(xs, ys)
-            self.setup.value = f"<b>polygon {setup.polygon}</b>" + html_table(
-                ("vertices (x, y, z)", "plane (A, B, C, D)", "dz/dx", "dz/dy"),
-                [(setup.vertices, setup.plane, setup.dzdx, setup.dzdy)],
+            self.setup.value = f"<b>polygon {setup.polygon}</b>" + scroll_box(
+                html_table(
+                    ("vertices (x, y, z)", "plane (A, B, C, D)", "dz/dx", "dz/dy"),
+                    [(setup.vertices, setup.plane, setup.dzdx, setup.dzdy)],
+                )
             )
         self.scanline.set_visible(row is not None)
         if row is None:
@@ -405,9 +565,11 @@ class InterpolationView:
             self.span_patch.set_visible(False)
         else:
             self.scanline.set_ydata([row.y, row.y])
-            self.edges.value = f"<b>row y = {row.y}</b>, z at x = 0: {row.z_row:.6g}" + html_table(
-                ("edge", "x", *names, *(f"d{n}/dy" for n in names)),
-                [(e.edge, e.x, *e.values, *e.dvdy) for e in row.entries],
+            self.edges.value = f"<b>row y = {row.y}</b>, z at x = 0: {row.z_row:.6g}" + scroll_box(
+                html_table(
+                    ("edge", "x", *names, *(f"d{n}/dy" for n in names)),
+                    [(e.edge, e.x, *e.values, *e.dvdy) for e in row.entries],
+                )
             )
             self._show_spans(row, names)
         refresh_figure(self.figure, self._canvas)
@@ -419,14 +581,16 @@ class InterpolationView:
             if e.kind == "span_values" and e.polygon == row.polygon and e.y == row.y
         ]
         current = here[-1][1] if here and here[-1][0] == self.step - 1 else None
-        self.spans.value = "<b>spans</b>" + html_table(
-            ("x_start", "x_end", "x_left", "x_right", "z", "dz/dx", *names)
-            + tuple(f"d{n}/dx" for n in names),
-            [
-                (e.x_start, e.x_end, e.x_left, e.x_right, e.z, e.dzdx, *e.values, *e.dvdx)
-                for _, e in here
-            ],
-            states=["current" if e is current else "done" for _, e in here],
+        self.spans.value = "<b>spans</b>" + scroll_box(
+            html_table(
+                ("x_start", "x_end", "x_left", "x_right", "z", "dz/dx", *names)
+                + tuple(f"d{n}/dx" for n in names),
+                [
+                    (e.x_start, e.x_end, e.x_left, e.x_right, e.z, e.dzdx, *e.values, *e.dvdx)
+                    for _, e in here
+                ],
+                states=["current" if e is current else "done" for _, e in here],
+            )
         )
         self.span_patch.set_visible(current is not None)
         if current is not None:

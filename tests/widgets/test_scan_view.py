@@ -100,7 +100,7 @@ def test_edge_table_marks_entering_edges_and_topology(stepper, view):
     assert "not built yet" in view.et_html.value
     stepper.slider.value = step_of(view.trace, "edges_activated", 5)
     assert view.et_html.value.count("background") == 2
-    assert "horizontal, kept for topology" in view.et_html.value
+    assert "horizontal: crosses no row, never active" in view.et_html.value
     assert "before the update for row 5" in view.aet_html.value
 
 
