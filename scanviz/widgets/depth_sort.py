@@ -335,6 +335,11 @@ class DepthSortView:
         shown = "<br>".join(html.escape(line) for line in lines[::-1][:8])
         self.log.value = f"<b>swaps and splits</b> ({len(lines)})<br>{shown}"
 
+    def step_kind(self, step: int) -> str:
+        """ "piece painted" for a step that paints a whole piece; "" for the trace's own kinds."""
+        painted = step and self._shown[step].painting is not None and self.steps_mode == "polygon"
+        return "piece painted" if painted else ""
+
     def narrate(self, step: int) -> str:
         """Step `step` in one plain sentence: the pair and the test that settled it, the swap,
         the split, or the piece painted."""
@@ -559,6 +564,10 @@ class PainterView:
             ("#", "piece", "polygon", f"key ({self.key})", "zmin", "zmax"), rows, states=states
         )
         refresh_figure(self.figure, self._canvas)
+
+    def step_kind(self, step: int) -> str:
+        """ "polygon painted" for a step that paints a whole polygon; "" for the trace's own kinds."""
+        return "polygon painted" if step > 1 and self.steps_mode == "polygon" else ""
 
     def narrate(self, step: int) -> str:
         """Step `step` in one plain sentence: the sort, the polygon painted, or the sample."""

@@ -38,6 +38,13 @@ class View(Protocol):
         """Update in place to the state after the first `step` events."""
 
 
+def _step_kind(view: View, step: int) -> str:
+    """What `view` calls `step` when its steps are not the trace's events one for one (a
+    painter's "polygon painted" stands for the samples it paints), or ""."""
+    step_kind = getattr(view, "step_kind", None)
+    return step_kind(step) if callable(step_kind) else ""
+
+
 def narration_of(view: View, step: int) -> str:
     """What `view` says of `step`: its ``narrate(step)`` sentence, or "" if it has none.
 
@@ -311,6 +318,7 @@ class Stepper:
     def _show(self, step: int) -> None:
         self.slider.value = step  # when the model was moved directly
         kind = self.model.trace[step - 1].kind if step else "start"
+        kind = next(filter(None, (_step_kind(view, step) for view in self.views)), kind)
         self.label.value = f"step {step} / {len(self.model)}: {kind}"
         sentence = next(filter(None, (narration_of(view, step) for view in self.views)), "")
         if not sentence:

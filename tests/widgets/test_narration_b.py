@@ -346,4 +346,18 @@ def test_every_figure_fits_the_notebook_and_no_text_is_under_9_points():
 def test_fast_phong_coefficients_scroll_when_wide():
     stepper = fast_phong_stepper(*TRIANGLE, (0.2, 0.2, 1), (0, 0, 1), MODEL, width=16, height=16)
     table = stepper.views[0].coefficients.value
-    assert "overflow-x:auto" in table and "scroll &rarr;" in table
+    assert "overflow-x:auto" in table and "scroll →" in table
+
+
+def test_a_painting_step_is_labelled_by_what_it_paints():
+    from scanviz.visibility import examples
+    from scanviz.widgets import painter_stepper
+
+    stepper = painter_stepper(examples.slides_painter(), 24, 24)
+    stepper.slider.value = 1
+    assert stepper.label.value.endswith(": polygons_sorted")
+    stepper.slider.value = 2
+    assert stepper.label.value.endswith(": polygon painted")
+    pixels = painter_stepper(examples.slides_painter(), 24, 24, steps="pixel")
+    pixels.slider.value = 2
+    assert pixels.label.value.endswith(": pixel_painted")
