@@ -336,9 +336,9 @@ class DepthSortView:
         self.log.value = f"<b>swaps and splits</b> ({len(lines)})<br>{shown}"
 
     def step_kind(self, step: int) -> str:
-        """ "piece painted" for a step that paints a whole piece; "" for the trace's own kinds."""
+        """`piece_painted` for a step that paints a whole piece; "" for the trace's own kinds."""
         painted = step and self._shown[step].painting is not None and self.steps_mode == "polygon"
-        return "piece painted" if painted else ""
+        return "piece_painted" if painted else ""
 
     def narrate(self, step: int) -> str:
         """Step `step` in one plain sentence: the pair and the test that settled it, the swap,
@@ -566,8 +566,8 @@ class PainterView:
         refresh_figure(self.figure, self._canvas)
 
     def step_kind(self, step: int) -> str:
-        """ "polygon painted" for a step that paints a whole polygon; "" for the trace's own kinds."""
-        return "polygon painted" if step > 1 and self.steps_mode == "polygon" else ""
+        """`polygon_painted` for a step that paints a whole polygon; "" for the trace's own kinds."""
+        return "polygon_painted" if step > 1 and self.steps_mode == "polygon" else ""
 
     def narrate(self, step: int) -> str:
         """Step `step` in one plain sentence: the sort, the polygon painted, or the sample."""

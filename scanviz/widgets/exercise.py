@@ -96,9 +96,10 @@ class TraceComparison:
             widgets.HBox([self.yours_pane, self.reference_pane]),
         ]
         self.rtol = rtol
-        self.detail_pane = widgets.HTML()  # the current row's two events, field by field
+        # the current row's two events, field by field; min_width 0 lets its table scroll
+        self.detail_pane = widgets.HTML(layout={"min_width": "0", "width": "100%"})
         parts.append(self.detail_pane)
-        self.widget = widgets.VBox(parts)
+        self.widget = widgets.VBox(parts, layout={"min_width": "0", "width": "100%"})
         self._show(start)
 
     def _go(self, index: int) -> None:
@@ -123,9 +124,10 @@ class TraceComparison:
         if index < len(self.reference):
             mine, theirs = self.yours[index], self.reference[index]
             title = event_title(theirs if mine is MISSING else mine)
-            self.detail_pane.value = (
-                f"<b>row {index + 1}: {html.escape(title)}</b>"
+            self.detail_pane.value = (  # width 0, min-width 100%: the table may not widen the pane
+                f"<div style='width:0;min-width:100%'><b>row {index + 1}: {html.escape(title)}</b>"
                 + comparison_html(mine, theirs, self.rtol)
+                + "</div>"
             )
         self.prev_button.disabled = index <= self.slider.min
         self.next_button.disabled = index >= self.slider.max

@@ -40,7 +40,7 @@ class View(Protocol):
 
 def _step_kind(view: View, step: int) -> str:
     """What `view` calls `step` when its steps are not the trace's events one for one (a
-    painter's "polygon painted" stands for the samples it paints), or ""."""
+    painter's "polygon_painted" stands for the samples it paints), or ""."""
     step_kind = getattr(view, "step_kind", None)
     return step_kind(step) if callable(step_kind) else ""
 

@@ -357,7 +357,7 @@ def test_a_painting_step_is_labelled_by_what_it_paints():
     stepper.slider.value = 1
     assert stepper.label.value.endswith(": polygons_sorted")
     stepper.slider.value = 2
-    assert stepper.label.value.endswith(": polygon painted")
+    assert stepper.label.value.endswith(": polygon_painted")
     pixels = painter_stepper(examples.slides_painter(), 24, 24, steps="pixel")
     pixels.slider.value = 2
     assert pixels.label.value.endswith(": pixel_painted")
