@@ -70,7 +70,7 @@ def _render(shadings: tuple[str, ...], visibilities: tuple[str, ...]) -> Callabl
 
 
 def _render_options() -> None:
-    from scanviz import render
+    from scanviz import Recorder, render
     from scanviz.io import load_scene
     from scanviz.scene import Camera, Mesh, Scene, SceneObject
 
@@ -78,6 +78,7 @@ def _render_options() -> None:
     for mask in ("4x4", "8x4", "8x8"):
         render(cube, 24, 24, visibility="abuffer", mask=mask)
     render(cube, 24, 24, visibility="abuffer", weights="mask", merge="object")
+    render(cube, 48, 48, visibility="abuffer", trace=Recorder(region=(24, 24, 28, 28)))
     sphere = load_scene("builtin:sphere")
     render(sphere, 24, 24, shading="gouraud", perspective_correct=False, edges=True)
     render(sphere, 24, 24, sample="center", subpixel_bits=None)
@@ -167,8 +168,10 @@ TASKS: dict[str, Callable[[], None]] = {
     "render: flat, Gouraud": _render(("flat", "gouraud"), ("zbuffer",)),
     "render: Phong, Gooch, fast Phong": _render(("phong", "gooch", "fast_phong"), ("zbuffer",)),
     "render: a-buffer and the flawed blend": _render(("phong",), ("abuffer", "flawed")),
-    "render: painter, depth sort, BSP": _render(("flat",), ("painter", "depth_sort", "bsp")),
-    "render: scanline, Warnock": _render(("flat",), ("scanline", "warnock")),
+    "render: painter, depth sort, BSP": _render(
+        ("flat", "gouraud"), ("painter", "depth_sort", "bsp")
+    ),
+    "render: scanline, Warnock": _render(("flat", "gouraud"), ("scanline", "warnock")),
     "render options": _render_options,
     "fast Phong and its table": _fast_phong,
     "visibility algorithms": _visibility,
@@ -239,8 +242,9 @@ def _imports(path: Path, package: Path) -> set[str]:
             parts = (*base, *(node.module.split(".") if node.module else ()))
             if not node.level:
                 parts = parts[1:]
-            names = [(*parts, alias.name) for alias in node.names]
-            targets |= {_source(p, package) for p in [parts, *names]} - {None}
+            for alias in node.names:  # a submodule, or else a name the module defines
+                module = _source((*parts, alias.name), package)
+                targets.add(module if module else _source(parts, package))
         elif isinstance(node, ast.Import):
             for alias in node.names:
                 parts = alias.name.split(".")
