@@ -21,6 +21,7 @@ what it returns.
 from __future__ import annotations
 
 import difflib
+import importlib
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -41,6 +42,31 @@ class Step:
     reference: Callable
 
 
+# Where each step is registered, in the order of the course (the exercises' order). A name
+# is looked up here and only its module is imported: no package imports every other one.
+LOCATIONS: dict[str, str] = {
+    "midpoint_step": "scanviz.raster.lines",
+    "edge_table_entry": "scanviz.raster.scanline",
+    "aet_update": "scanviz.raster.scanline",
+    "span_rule": "scanviz.raster.scanline",
+    "owns_boundary": "scanviz.raster.edgefn",
+    "edge_function": "scanviz.raster.edgefn",
+    "span_step": "scanviz.raster.interpolate",
+    "depth_test": "scanviz.visibility.zbuffer",
+    "back_face_test": "scanviz.transform.cull",
+    "clip_against_plane": "scanviz.transform.clip",
+    "viewing_matrix": "scanviz.transform.viewing",
+    "insert_fragment": "scanviz.abuffer.pixelstruct",
+    "pack_pixel": "scanviz.abuffer.pixelstruct",
+    "depth_order_test": "scanviz.visibility.depth_sort",
+    "bsp_display_order": "scanviz.visibility.bsp",
+    "perimeter_test": "scanviz.surfaces.perimeter",
+    "perimeter_merge": "scanviz.surfaces.perimeter",
+    "specular_level": "scanviz.shading.lut",
+    "forward_difference": "scanviz.shading.fast_phong",
+    "dislop_column": "scanviz.antialias.line",
+    "table_index": "scanviz.antialias.tables",
+}
 _TABLE: dict[str, Step] = {}
 _NONE: MappingProxyType = MappingProxyType({})
 _REPLACED: ContextVar[MappingProxyType] = ContextVar("scanviz_steps", default=_NONE)
@@ -54,6 +80,8 @@ def step(name: str, *, takes: str, returns: str) -> Callable[[Callable], Callabl
     """
 
     def register(function: Callable) -> Callable:
+        if LOCATIONS.get(name) != function.__module__:
+            raise TypeError(f"step {name!r} is not listed in LOCATIONS as {function.__module__!r}")
         if name in _TABLE:
             raise TypeError(f"step {name!r} is registered twice")
         _TABLE[name] = Step(name, function.__module__, takes, returns, function)
@@ -65,7 +93,7 @@ def step(name: str, *, takes: str, returns: str) -> Callable[[Callable], Callabl
 def get(name: str) -> Callable:
     """The function that currently implements step `name` (the reference unless replaced)."""
     replaced = _REPLACED.get()
-    return replaced[name] if name in replaced else _TABLE[name].reference
+    return replaced[name] if name in replaced else _registered(name).reference
 
 
 def replaced() -> frozenset[str]:
@@ -74,17 +102,22 @@ def replaced() -> frozenset[str]:
 
 
 def table() -> list[Step]:
-    """Every registered step, in the order the modules registered them."""
-    _load_reference_modules()
-    return list(_TABLE.values())
+    """Every step, in the order of the course (`LOCATIONS`)."""
+    return [_registered(name) for name in LOCATIONS]
+
+
+def _registered(name: str) -> Step:
+    """Step `name`, importing the module that registers it on first use."""
+    if name not in _TABLE:
+        importlib.import_module(LOCATIONS[name])
+    return _TABLE[name]
 
 
 def _check_name(name: str) -> None:
-    _load_reference_modules()
-    if name not in _TABLE:
-        close = difflib.get_close_matches(name, _TABLE, n=1)
+    if name not in LOCATIONS:
+        close = difflib.get_close_matches(name, LOCATIONS, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
-        raise ValueError(f"unknown step {name!r}{hint}; known steps: {sorted(_TABLE)}")
+        raise ValueError(f"unknown step {name!r}{hint}; known steps: {sorted(LOCATIONS)}")
 
 
 @contextmanager
@@ -109,8 +142,3 @@ def using(**replacements: Callable) -> Iterator[None]:
         yield
     finally:
         _REPLACED.reset(token)
-
-
-def _load_reference_modules() -> None:
-    """Import every module that registers steps, so the table is complete."""
-    from . import abuffer, antialias, pipeline, raster, surfaces, transform, visibility  # noqa: F401

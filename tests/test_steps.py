@@ -55,3 +55,18 @@ def test_every_step_is_documented():
     for step in table:
         assert step.takes.strip() and step.returns.strip(), step.name
         assert callable(step.reference)
+
+
+def test_the_table_of_locations_is_what_the_modules_register():
+    for name, module in steps.LOCATIONS.items():
+        registered = {s.name for s in steps.table() if s.module == module}
+        assert name in registered, (name, module)
+        assert steps.get(name).__module__ == module
+    assert [s.name for s in steps.table()] == list(steps.LOCATIONS)
+
+
+def test_a_step_must_be_listed_where_it_is_registered():
+    with pytest.raises(TypeError, match="'span_rule' is not listed in LOCATIONS as 'tests"):
+        steps.step("span_rule", takes="x", returns="y")(lambda: None)
+    with pytest.raises(TypeError, match="'no_such_step' is not listed"):
+        steps.step("no_such_step", takes="x", returns="y")(lambda: None)
