@@ -266,7 +266,7 @@ IDEA = (
     "dxy + m x - Ta/2 <= y <= dxy + m x + Ta/2, with -1/2 < dxy <= 1/2 and Ta = sqrt(1 + m²) "
     "= 1 / cos a, the band's vertical thickness: every column holds exactly Ta, so the "
     "intensity per unit length is the same at every slope.\n\n"
-    "The dissertation's formula: dw = Ta - 1, the first critical value fcv = (m + dw) / 2 "
+    "Wang's (1989) formula: dw = Ta - 1, the first critical value fcv = (m + dw) / 2 "
     "(for |dxy| > fcv the band misses the lower pixel), ad = |dxy|, the second critical value "
     "scv = ad + dw / 2 (the band's mean overhang above the middle pixel). Then\n\n"
     "| branch | when | up | low |\n|---|---|---|---|\n"
@@ -304,7 +304,7 @@ register(
             "    from the middle pixel's centre at the column centre (a float, -1/2 < dxy <= 1/2),\n"
             "    positive above.\n"
             "    Return (up, mid, low): the areas of the pixels above, at and below the middle one\n"
-            '    inside the 1-wide band, by the dissertation\'s formula (Fig 4-2)."""\n'
+            '    inside the 1-wide band, by Wang\'s (1989) formula (Fig. 4-2)."""\n'
             "    raise NotImplementedError\n"
         ),
         solution=SOLUTION,
@@ -594,7 +594,7 @@ POST_IDEA = (
     "exact period 50 / gcd(i, 50), so one table of 51 × 51 × 3 areas serves every slope: "
     "`[i, j, (upper, middle, lower)]` with dxy_j = -1/2 + j / 50 (j = 0 and j = 50 are the "
     "same configuration, one row apart).\n\n"
-    "The indices are the dissertation's C: i = (int)(|m| * 50 + 0.5), j = (int)((dxy + 0.5) "
+    "The indices are those of Wang's (1989) C code: i = (int)(|m| * 50 + 0.5), j = (int)((dxy + 0.5) "
     "* 50 + 0.5), the nearest division, halves rounded up (m = 0.080 gives i = 4 from 4.5, "
     "m = 0.6747 gives i = 34). Each traced column emits a `post_column` event (the segment, "
     "the middle pixel, dxy, i, j and the areas read); scanviz: y up, pixel (x, y) is the "

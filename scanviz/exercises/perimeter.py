@@ -1,7 +1,7 @@
 """Exercises on the Floating Perimeter Algorithm (scanviz.surfaces.perimeter), through
 `floating_perimeter` in lines mode.
 
-Two steps of Fig. 2-4 (spec §1.6.5): ``perimeter_test``, whether a raster
+Two steps of Fig. 2-4 (Wang 1989, ch. 2): ``perimeter_test``, whether a raster
 point of an edge is hidden by the perimeter the facets before it left, and
 ``perimeter_merge``, how a facet's visible points (Bbuf) widen the
 perimeter after all its edges. The real FPA runs with the student's step;
@@ -10,7 +10,7 @@ perimeter updates (``perimeter_update``) are graded, then the hidden-line
 raster. Cases are small grid surfaces with a viewpoint in each kind of
 viewing case, parallel views among them, and one where the perimeter test
 hides points that no earlier facet covers (a hole): the reference is the
-dissertation's test, not the z-buffer's truth.
+Wang's (1989) test, not the z-buffer's truth.
 """
 
 from __future__ import annotations
@@ -343,7 +343,7 @@ def _test_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
 
 
 IDEA = (
-    "The **Floating Perimeter Algorithm** (Wang 1989, §2.3; spec §1.6.5, Fig. 2-4) draws the "
+    "The **Floating Perimeter Algorithm** (Wang 1989, ch. 2, Fig. 2-4) draws the "
     "hidden lines of a grid surface z = f(x, y). Its facets are taken **nearest first** (the "
     "enumeration of the viewing case), so what hides a facet's edge has been drawn already. "
     "What the facets so far cover on the screen is kept only as its **floating perimeter**, "
@@ -359,7 +359,7 @@ IDEA = (
     "runs of each edge are drawn. After **all** of a facet's edges, its visible points (Bbuf) "
     "widen the perimeter: `top[x] = max(top[x], y)`, `bottom[x] = min(bottom[x], y)`, "
     "`right[y] = max(right[y], x)`, `left[y] = min(left[y], x)`.\n\n"
-    "The test is the dissertation's, not the truth: where the facets so far leave a notch "
+    "The test is Wang's (1989), not the truth: where the facets so far leave a notch "
     "inside their row and column spans (a *hole*), it hides points no earlier facet covers. "
     "The last public case has one; the reference hides those points, and so must you "
     '(see it in the stepper with `CASE = public_inputs("{id}", 4)`).'

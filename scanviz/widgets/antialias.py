@@ -8,7 +8,7 @@
   values of Fig 4-2 and the branch they select, and the areas against
   sec(a), the constant intensity per column. With the printed formula and a
   slope over 0.75 it also gives the exact areas (``exact=True``) and the
-  difference: the dissertation's inexactness.
+  difference: where Wang's (1989) formula is inexact.
 * `plot_coverage_comparison`: the midpoint line, Wu, Gupta-Sproull, 4x4
   supersampling, DISLOP_L and the exact band, each with its error map.
 * `plot_ropiness` (data: `intensity_per_length`): intensity per unit length
@@ -57,7 +57,7 @@ __all__ = [
 ]
 
 DIGITS = 4  # significant digits of the values in the text
-EXACT_SLOPE = 0.75  # up to this slope the printed formula is exact (spec §3.2)
+EXACT_SLOPE = 0.75  # up to this slope the printed formula is exact (Wang 1989, ch. 4)
 ROLES = ("upper", "middle", "lower", "spill")
 OFFSETS = {"upper": 1, "middle": 0, "lower": -1}  # rows from the middle pixel, first octant
 BAND_COLOR, LINE_COLOR, COLUMN_COLOR = "tab:orange", "crimson", "#ffd54f"

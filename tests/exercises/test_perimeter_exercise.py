@@ -269,7 +269,7 @@ def test_the_released_notebook_holds_the_stub_and_runs_the_perimeter_stepper(exe
     answers = [c for c in notebook.cells if c.source.startswith(ANSWER_MARKER)]
     assert [a.source for a in answers] == [answer_cell_source(exercise, exercise.stub)]
     assert "perimeter_stepper(case_surface(CASE), case_view(CASE)" in notebook.cells[1].source
-    assert "§1.6.5" in notebook.cells[0].source
+    assert "Wang 1989, ch. 2, Fig. 2-4" in notebook.cells[0].source  # cited by author and year
 
 
 def test_the_released_notebooks_grade_blank_zero_and_solved_full(tmp_path):
