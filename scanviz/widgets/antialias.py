@@ -11,7 +11,7 @@
   difference: where Wang's (1989) formula is inexact.
 * `plot_coverage_comparison`: the midpoint line, Wu, Gupta-Sproull, 4x4
   supersampling, DISLOP_L and the exact band, each with its error map.
-* `plot_ropiness` (data: `intensity_per_length`): intensity per unit length
+* `plot_ropiness` (data: `scanviz.antialias.compare.intensity_per_length`): intensity per unit length
   against the angle: DISLOP_L's constant intensity against the ropiness of
   the others.
 * `plot_period_table`: the per-slope periodic look-up table of §3.7.
@@ -31,17 +31,13 @@ from matplotlib.patches import Rectangle
 from matplotlib.patheffects import withStroke
 
 from ..antialias import dislop_line
+from ..antialias.compare import coverage_methods, intensity_per_length
 from ..antialias.line import canonical
 from ..antialias.peers import (
     band_rectangle,
-    exact_band_line,
-    gupta_sproull_line,
-    supersampled_line,
-    wu_line,
 )
 from ..conventions import short_repr
 from ..geometry import as_coordinates
-from ..raster import midpoint_line
 from ..trace import Trace
 from ._common import WIDEST, fmt, html_table, new_figure, say, status_label
 from .stepper import Stepper, draw_pixel_grid, figure_widget, first_steps, refresh_figure
@@ -49,7 +45,6 @@ from .stepper import Stepper, draw_pixel_grid, figure_widget, first_steps, refre
 __all__ = [
     "DislopView",
     "dislop_stepper",
-    "intensity_per_length",
     "plot_coverage_comparison",
     "plot_period_table",
     "plot_post_antialias",
@@ -65,7 +60,6 @@ NOTHING = (
     "<i>nothing to step: the line has zero length, or none of its columns reaches the raster</i>"
 )
 LABEL_POINTS = 20.0  # a pixel this wide (points) holds a 9 pt area label such as '.87'
-MARGIN = 2  # columns kept clear of each end when measuring intensity per unit length
 
 
 # ---------------------------------------------------------------- the stepper
@@ -488,34 +482,6 @@ def dislop_stepper(p0, p1, width: int, height: int, *, exact: bool = False) -> S
 # ---------------------------------------------------------------- the peers side by side
 
 
-def _midpoint_coverage(p0, p1, width: int, height: int) -> np.ndarray:
-    """The binary midpoint line between the pixels that hold the endpoints."""
-    x0, y0, x1, y1 = (int(v) for v in np.floor([*p0, *p1]))
-    xs, ys = midpoint_line(x0, y0, x1, y1)
-    image = np.zeros((height, width))
-    inside = (xs >= 0) & (xs < width) & (ys >= 0) & (ys < height)
-    image[ys[inside], xs[inside]] = 1.0
-    return image
-
-
-def coverage_methods(p0, p1, width: int, height: int) -> dict[str, np.ndarray]:
-    """Each method's (height, width) coverage of the line p0-p1, the exact band last.
-
-    >>> list(coverage_methods((1, 1), (5, 3), 6, 4))  # doctest: +NORMALIZE_WHITESPACE
-    ['midpoint (binary)', 'Wu', 'Gupta–Sproull', 'supersample 4×4', 'DISLOP_L', 'exact band']
-    """
-    exact = exact_band_line(p0, p1, width, height)  # checks the arguments
-    p0, p1 = as_coordinates(p0, "'p0'", (2,)), as_coordinates(p1, "'p1'", (2,))
-    return {
-        "midpoint (binary)": _midpoint_coverage(p0, p1, exact.shape[1], exact.shape[0]),
-        "Wu": wu_line(p0, p1, width, height),
-        "Gupta–Sproull": gupta_sproull_line(p0, p1, width, height),
-        "supersample 4×4": supersampled_line(p0, p1, width, height, k=4),
-        "DISLOP_L": dislop_line(p0, p1, width, height),
-        "exact band": exact,
-    }
-
-
 def plot_coverage_comparison(p0, p1, width: int, height: int):
     """The line p0-p1 by six methods, each above its error against the exact band area.
 
@@ -597,95 +563,6 @@ def plot_coverage_comparison(p0, p1, width: int, height: int):
 # ---------------------------------------------------------------- ropiness
 
 
-def _ropiness_methods() -> dict:
-    return {
-        "supersample 2×2": lambda p0, p1, w, h: supersampled_line(p0, p1, w, h, k=2),
-        "supersample 4×4": lambda p0, p1, w, h: supersampled_line(p0, p1, w, h, k=4),
-        "Wu": wu_line,
-        "Gupta–Sproull": gupta_sproull_line,
-        "DISLOP_L": dislop_line,
-    }
-
-
-def _check_angles(angles: object) -> np.ndarray:
-    try:
-        values = np.asarray(angles, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"'angles' must be a 1-D array of degrees; got {short_repr(angles)}"
-        ) from None
-    if values.ndim != 1 or not np.isfinite(values).all() or ((values < 0) | (values > 90)).any():
-        raise ValueError(
-            f"'angles' must be a 1-D array of finite degrees in 0..90; got {short_repr(angles)}"
-        )
-    return values
-
-
-def intensity_per_length(angles, length: float, width: int, height: int) -> dict[str, np.ndarray]:
-    """Intensity per unit length of each method's line, against its angle, away from its ends.
-
-    Parameters
-    ----------
-    angles : (N,) array_like of float
-        Degrees from the x axis, in 0..90.
-    length : float
-        The segment's length in pixels; it must fit in the raster with
-        ``2 * MARGIN + 2`` pixels to spare each side.
-    width, height : int
-        The raster size; every line is centred at (width/2 + 0.137, height/2 + 0.291).
-
-    Returns
-    -------
-    dict of str to (N,) ndarray of float64
-        For each method (2x2 and 4x4 supersampling, Wu, Gupta-Sproull,
-        DISLOP_L): the sum of its image over the segment's middle major-axis
-        columns (those whole inside the segment, `MARGIN` columns clear of
-        each end, so no method's end treatment counts), divided by the length
-        of the segment over them. 1 for an exact area method.
-
-    Raises
-    ------
-    TypeError, ValueError
-        If `angles` is not a 1-D array of degrees in 0..90, or `length` is not
-        a positive real number that fits.
-
-    Examples
-    --------
-    >>> data = intensity_per_length([0, 30, 45], 20, 32, 32)
-    >>> data["Wu"].round(4).tolist(), data["DISLOP_L"].round(12).tolist()
-    ([1.0, 0.866, 0.7071], [1.0, 1.0, 1.0])
-    """
-    angles = _check_angles(angles)
-    if (
-        isinstance(length, bool)
-        or not isinstance(length, numbers.Real)
-        or not math.isfinite(length)
-    ):
-        raise TypeError(f"'length' must be a finite real number; got {short_repr(length)}")
-    room = min(width, height) - 2 * MARGIN - 4
-    if not 2 * MARGIN + 1 < length <= room:
-        raise ValueError(
-            f"'length' must be in {2 * MARGIN + 1}..{room} (more than {2 * MARGIN + 1} columns, "
-            f"the line on the {width}x{height} raster); got {short_repr(length)}"
-        )
-    centre = np.array([width / 2 + 0.137, height / 2 + 0.291])
-    methods = _ropiness_methods()
-    data = {name: np.empty(len(angles)) for name in methods}
-    for k, angle in enumerate(np.radians(angles)):
-        half = 0.5 * length * np.array([math.cos(angle), math.sin(angle)])
-        p0, p1 = centre - half, centre + half
-        steep = abs(p1[1] - p0[1]) > abs(p1[0] - p0[0])  # the major axis, as every method picks it
-        axis = 1 if steep else 0
-        first = math.ceil(min(p0[axis], p1[axis])) + MARGIN
-        last = math.floor(max(p0[axis], p1[axis])) - MARGIN  # columns first..last - 1
-        along = abs(p1[axis] - p0[axis]) / length  # major-axis extent per unit length
-        for name, method in methods.items():
-            image = method(p0, p1, width, height)
-            columns = image[first:last, :] if steep else image[:, first:last]
-            data[name][k] = float(columns.sum()) * along / (last - first)
-    return data
-
-
 def plot_ropiness(angles, length: float, width: int, height: int):
     """Intensity per unit length against the line's angle: DISLOP_L's constant intensity and the others' ropiness.
 
@@ -708,7 +585,7 @@ def plot_ropiness(angles, length: float, width: int, height: int):
     from matplotlib.figure import Figure
 
     data = intensity_per_length(angles, length, width, height)
-    angles = _check_angles(angles)
+    angles = np.asarray(angles, dtype=np.float64)  # checked by intensity_per_length
     figure = Figure(figsize=(7.0, 4.2))
     axes = figure.add_subplot()
     axes.axhline(1.0, color="0.6", ls="--", lw=1, label="exact area (1)")

@@ -9,6 +9,7 @@ import pytest
 
 from scanviz.antialias import dislop_line
 from scanviz.antialias.columns import LINE_BRANCHES, line_column
+from scanviz.antialias.compare import intensity_per_length
 from scanviz.antialias.peers import (
     exact_band_line,
     gupta_sproull_line,
@@ -22,7 +23,6 @@ from scanviz.widgets._common import fmt
 from scanviz.widgets.antialias import (
     DIGITS,
     ROLES,
-    intensity_per_length,
     plot_coverage_comparison,
     plot_period_table,
     plot_post_antialias,
