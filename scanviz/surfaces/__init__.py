@@ -41,7 +41,7 @@ from .perimeter import (
     facet_polygons,
     floating_perimeter,
 )
-from .reference import ZBufferComparison, compare_with_zbuffer
+from .reference import SurfaceResults, ZBufferComparison, compare_with_zbuffer, surface_results
 from .view import View
 
 __all__ = [
@@ -72,6 +72,8 @@ __all__ = [
     "rogers",
     "rogers_height",
     "compare_with_zbuffer",
+    "surface_results",
+    "SurfaceResults",
     "enumerate_facets",
     "facet_edges",
     "facet_polygons",

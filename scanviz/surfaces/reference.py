@@ -254,3 +254,57 @@ def _covered_before(fpa: PerimeterResult, facet: np.ndarray) -> np.ndarray:
     first = number[facet]  # facet -1 (nothing covers the sample) picks the sentinel
     points = fpa.points
     return first[points[:, 1], points[:, 0]] < fpa.edges.facet[fpa.point_edge]
+
+
+@dataclass(frozen=True)
+class SurfaceResults:
+    """One grid surface by every method: what `plot_results` draws.
+
+    Attributes
+    ----------
+    lines : PerimeterResult
+        The FPA's hidden lines.
+    horizon : HorizonResult
+        The floating horizon's curves of one family.
+    shaded : PerimeterResult
+        The FPA's hidden surfaces.
+    zbuffer : RenderResult
+        The z-buffer's render of ``surface.scene(view, width, height)``.
+    facets_differ : int
+        Pixels where the FPA's visible facet is not the z-buffer's.
+    """
+
+    lines: PerimeterResult
+    horizon: object
+    shaded: PerimeterResult
+    zbuffer: object
+    facets_differ: int
+
+
+def surface_results(
+    surface: GridSurface,
+    view: View,
+    width: int,
+    height: int,
+    *,
+    family: str = "x",
+    shading: str = "phong",
+) -> SurfaceResults:
+    """The FPA (lines and surfaces), the floating horizon of `family` and the z-buffer, on one view.
+
+    Examples
+    --------
+    >>> from scanviz.surfaces import gaussian
+    >>> results = surface_results(gaussian(5), View((3, 4, 3), (-3, -4, -3)), 24, 24)
+    >>> results.facets_differ
+    0
+    """
+    from ..pipeline import render
+    from .horizon import floating_horizon
+
+    lines = floating_perimeter(surface, view, width, height)
+    horizon = floating_horizon(surface, view, width, height, family=family)
+    shaded = floating_perimeter(surface, view, width, height, "surface", shading=shading)
+    zbuffer = render(surface.scene(view, width, height), width, height, shading=shading)
+    facet = np.where(zbuffer.polygon >= 0, zbuffer.polygon // 2, -1)  # two triangles per facet
+    return SurfaceResults(lines, horizon, shaded, zbuffer, int((facet != shaded.facet).sum()))

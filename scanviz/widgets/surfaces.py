@@ -34,13 +34,7 @@ import numpy as np
 from matplotlib.colors import to_rgb
 from matplotlib.patches import Patch, Rectangle
 
-from ..surfaces import (
-    GridSurface,
-    View,
-    ZBufferComparison,
-    floating_horizon,
-    floating_perimeter,
-)
+from ..surfaces import GridSurface, View, ZBufferComparison, surface_results
 from ._common import WIDEST
 from .horizon import HorizonView, horizon_stepper
 from .perimeter import VISIBLE, PerimeterView, perimeter_stepper
@@ -112,24 +106,18 @@ def plot_results(
     """
     from matplotlib.figure import Figure
 
-    from ..pipeline import render
-
     check_surface_view(surface, view)
-    lines = floating_perimeter(surface, view, width, height)
-    horizon = floating_horizon(surface, view, width, height, family=family)
-    shaded = floating_perimeter(surface, view, width, height, "surface", shading=shading)
-    zbuffer = render(surface.scene(view, width, height), width, height, shading=shading)
-    facet = np.where(zbuffer.polygon >= 0, zbuffer.polygon // 2, -1)
-    differ = int((facet != shaded.facet).sum())
-    figure = Figure(figsize=(WIDEST, WIDEST / 4 * max(height / width, 0.5) + 0.9))
+    results = surface_results(surface, view, width, height, family=family, shading=shading)
+    panel = WIDEST / 2  # two panels a row, two rows
+    figure = Figure(figsize=(WIDEST, 2 * (panel * max(height / width, 0.5) + 0.5)))
     panels = (
-        (lines.image, f"FPA hidden lines:\n{lines.stats.segments} segments"),
-        (horizon.image, f"FHA (family {family}):\n{horizon.stats.segments} parts"),
-        (shaded.image, f"FPA hidden surfaces:\n{differ} px differ"),
-        (zbuffer.image, "z-buffer:\nrender(surface.scene(...))"),
+        (results.lines.image, f"FPA hidden lines:\n{results.lines.stats.segments} segments"),
+        (results.horizon.image, f"FHA (family {family}):\n{results.horizon.stats.segments} parts"),
+        (results.shaded.image, f"FPA hidden surfaces:\n{results.facets_differ} px differ"),
+        (results.zbuffer.image, "z-buffer:\nrender(surface.scene(...))"),
     )
     for k, (image, title) in enumerate(panels):
-        _screen_axes(figure.add_subplot(1, 4, k + 1), image, title)
+        _screen_axes(figure.add_subplot(2, 2, k + 1), image, title)
     figure.tight_layout()
     return figure
 
