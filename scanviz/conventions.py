@@ -17,10 +17,14 @@
   keeps the float64 values and decides them exactly too.
 * Coordinates are real numbers (int or float; not bool, str or complex), finite,
   within +-COORD_LIMIT pixels (`scanviz.geometry.as_coordinates` checks them).
+
+The argument checks every package shares live here too, one function a rule,
+each raising an error that names the argument and the rule.
 """
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
@@ -97,3 +101,53 @@ def check_raster_size(width: object, height: object) -> tuple[int, int]:
         if not 0 <= value <= MAX_RASTER_SIZE:
             raise ValueError(f"{name!r} must be in 0..{MAX_RASTER_SIZE}; got {short_repr(value)}")
     return int(width), int(height)
+
+
+def finite_real(name: str, value: object) -> float:
+    """`value` as a float if it is a finite real number (not a bool), else an error naming `name`.
+
+    >>> finite_real("ks", 1), finite_real("ks", 0.5)
+    (1.0, 0.5)
+    >>> finite_real("ks", float("nan"))
+    Traceback (most recent call last):
+    ValueError: 'ks' must be finite; got nan
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name!r} must be a real number; got {value!r}")
+    if not math.isfinite(value):
+        raise ValueError(f"{name!r} must be finite; got {value}")
+    return float(value)
+
+
+def check_finite(name: str, array: np.ndarray) -> np.ndarray:
+    """Return `array` if all its values are finite, else a ValueError showing them all."""
+    if not np.isfinite(array).all():
+        raise ValueError(f"{name!r} must be finite; got {array.tolist()}")
+    return array
+
+
+def check_finite_rows(name: str, array: np.ndarray) -> np.ndarray:
+    """Return `array` if all its values are finite, else a ValueError naming the first bad row.
+
+    >>> check_finite_rows("points", np.array([[0.0, 1.0], [2.0, np.inf]]))
+    Traceback (most recent call last):
+    ValueError: 'points' row 1 is not finite: [2.0, inf]
+    """
+    finite = np.isfinite(array)
+    if not finite.all():
+        row = int(np.argwhere(~finite)[0][0])
+        raise ValueError(f"{name!r} row {row} is not finite: {array[row].tolist()}")
+    return array
+
+
+def check_rows(name: str, array: np.ndarray, broken: np.ndarray, rule: str) -> None:
+    """Raise a ValueError naming the first row of `array` where `broken` holds, and its `rule`.
+
+    >>> z = np.array([0.5, np.nan])
+    >>> check_rows("z", z, ~np.isfinite(z), "is not finite")
+    Traceback (most recent call last):
+    ValueError: 'z'[1] = nan is not finite
+    """
+    if broken.any():
+        row = int(np.argwhere(broken)[0][0])
+        raise ValueError(f"{name!r}[{row}] = {array[row].tolist()} {rule}")

@@ -256,13 +256,16 @@ def _contour_parts(contours: object) -> list:
     return [parts] if is_vertex else parts
 
 
+def check_three_distinct(vertices: np.ndarray, label: str) -> None:
+    """Raise a ValueError, naming `label`, unless (N, 2) `vertices` hold 3 distinct points."""
+    distinct = len(np.unique(vertices, axis=0))
+    if distinct < 3:
+        raise ValueError(f"{label} has {distinct} distinct vertices; a contour needs at least 3")
+
+
 def _as_contour(points: object, index: int) -> np.ndarray:
     array = as_coordinates(points, f"contour {index}", ("N", 2))
-    distinct = len(np.unique(array, axis=0))
-    if distinct < 3:
-        raise ValueError(
-            f"contour {index} has {distinct} distinct vertices; a contour needs at least 3"
-        )
+    check_three_distinct(array, f"contour {index}")
     array.setflags(write=False)
     return array
 

@@ -38,7 +38,8 @@ from numba import njit, prange
 from ..conventions import MAX_SUBPIXEL_BITS
 from ..limits import check_memory
 from ..raster import interpolate
-from ..raster.kernels import scan_polygon
+from ..raster.fixed import exact_bits_compiled
+from ..raster.kernels import has_three_distinct, scan_polygon
 from ..threads import use_threads
 from .area import MAX_WORK, _coverage_kernel
 
@@ -46,31 +47,6 @@ depth_plane = njit(cache=True)(interpolate.depth_plane)
 
 DONE, REFERENCE = 0, 1  # per-polygon status of `chunk_fragments`
 WINDOW_MARGIN = 1  # pixels around a polygon's bounding box: room for rounding of edge x
-
-
-@njit(cache=True)
-def _exact_bits(values):
-    """`raster.fixed.exact_bits`: fewest fractional bits holding every value, or MAX + 1 past it."""
-    most = 0
-    for v in values.ravel():
-        bits = 0
-        while bits <= MAX_SUBPIXEL_BITS and math.floor(v * 2.0**bits) != v * 2.0**bits:
-            bits += 1
-        most = max(most, bits)
-    return most
-
-
-@njit(cache=True)
-def _has_three_distinct(xy):
-    """Whether the vertices hold at least 3 distinct points (`geometry.Polygon`'s rule)."""
-    second = -1
-    for i in range(1, len(xy)):
-        if xy[i, 0] != xy[0, 0] or xy[i, 1] != xy[0, 1]:
-            if second < 0:
-                second = i
-            elif xy[i, 0] != xy[second, 0] or xy[i, 1] != xy[second, 1]:
-                return True
-    return False
 
 
 @njit(cache=True)
@@ -111,7 +87,7 @@ def _window_masks(grid, width, height, cols, rows, window, cast):
     masks = np.zeros((row1 - row0, col1 - col0), np.uint64)
     scaled = np.empty_like(grid)
     scaled[:, 0], scaled[:, 1] = grid[:, 0] * float(cols), grid[:, 1] * float(rows)
-    bits = _exact_bits(scaled)
+    bits = exact_bits_compiled(scaled, MAX_SUBPIXEL_BITS)
     if bits > MAX_SUBPIXEL_BITS:
         return masks, False
     units = np.empty(grid.shape, np.int64)
@@ -341,7 +317,7 @@ def _polygon_coverage(p, xy, offsets, window, width, height, cols, rows, bits, c
     or -1 (REFERENCE: the cells are not written).
     """
     lo, hi = offsets[p], offsets[p + 1]
-    if window[0] == window[1] or window[2] == window[3] or not _has_three_distinct(xy[lo:hi]):
+    if window[0] == window[1] or window[2] == window[3] or not has_three_distinct(xy[lo:hi]):
         return 0
     grid = _snapped(xy[lo:hi], bits)
     masks, exact = _window_masks(grid, width, height, cols, rows, window, cast)

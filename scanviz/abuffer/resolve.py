@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import steps
-from ..conventions import check_choice, check_raster_size
+from ..conventions import check_choice, check_raster_size, check_rows
 from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..trace import Recorder, Trace
@@ -111,8 +111,8 @@ class Fragments:
                 )
         for name in ("area", "opacity"):
             broken = (arrays[name] < 0) | (arrays[name] > 1)
-            _check_rows(name, arrays[name], broken, "is not in [0, 1]")
-        _check_rows("zmax", arrays["zmax"], arrays["zmax"] < arrays["zmin"], "is below 'zmin'")
+            check_rows(name, arrays[name], broken, "is not in [0, 1]")
+        check_rows("zmax", arrays["zmax"], arrays["zmax"] < arrays["zmin"], "is below 'zmin'")
         for name, array in arrays.items():
             array.setflags(write=False)
             object.__setattr__(self, name, array)
@@ -169,17 +169,8 @@ def _float_array(name: str, value: object) -> np.ndarray:
         array = np.array(value, dtype=np.float64)
     except (TypeError, ValueError) as error:
         raise TypeError(f"{name!r} must be an array of numbers: {error}") from None
-    if array.size and not np.isfinite(array).all():
-        row = int(np.argwhere(~np.isfinite(array))[0][0])
-        raise ValueError(f"{name!r}[{row}] = {array[row].tolist()} is not finite")
+    check_rows(name, array, ~np.isfinite(array), "is not finite")
     return array
-
-
-def _check_rows(name: str, array: np.ndarray, broken: np.ndarray, rule: str) -> None:
-    """Raise naming the first row where `broken`, and the `rule` it breaks."""
-    if broken.any():
-        row = int(np.flatnonzero(broken)[0])
-        raise ValueError(f"{name!r}[{row}] = {array[row].tolist()} {rule}")
 
 
 def check_layout(layout: object) -> tuple[int, int]:
@@ -347,8 +338,8 @@ def resolve(
 def _check_fragments_fit(fragments: Fragments, width: int, height: int, full: int) -> None:
     for name, size in (("x", width), ("y", height)):
         array = getattr(fragments, name)
-        _check_rows(
+        check_rows(
             name, array, (array < 0) | (array >= size), f"is not in 0..{size - 1} (the raster)"
         )
     outside = fragments.mask & ~np.uint64(full)
-    _check_rows("mask", fragments.mask, outside != 0, f"has bits outside the layout's {full:#x}")
+    check_rows("mask", fragments.mask, outside != 0, f"has bits outside the layout's {full:#x}")

@@ -27,6 +27,7 @@ from ..abuffer.area import MAX_WORK, _coverage_kernel, area_coverage
 from ..conventions import COORD_LIMIT
 from ..geometry import Polygon
 from ..raster import scan_convert
+from ..raster.kernels import has_three_distinct
 from ..trace.events import DislopColumn
 from . import columns
 from ._inputs import as_tracer, finish, new_raster
@@ -417,22 +418,6 @@ def _clipped_area_compiled(xs, ys, offsets, x, y, work):  # pragma: no cover - `
 
 
 @njit(cache=True)
-def _distinct_shifted(contour, x, y):  # pragma: no cover - compiled
-    """How many distinct vertices the shifted contour has, counting up to 3."""
-    first_x, first_y = contour[0, 0] - x, contour[0, 1] - y
-    second = -1
-    for i in range(1, len(contour)):
-        px, py = contour[i, 0] - x, contour[i, 1] - y
-        if px == first_x and py == first_y:
-            continue
-        if second < 0:
-            second = i
-        elif px != contour[second, 0] - x or py != contour[second, 1] - y:
-            return 3
-    return 1 if second < 0 else 2
-
-
-@njit(cache=True)
 def _exact_area_compiled(starts, ends, offsets, x, y):  # pragma: no cover - `_exact_area`
     """`_exact_area`, or -1.0 where it would not give the same bits (the caller defers).
 
@@ -442,8 +427,9 @@ def _exact_area_compiled(starts, ends, offsets, x, y):  # pragma: no cover - `_e
     or merging a contour to under 3 distinct vertices) and a pixel past the
     kernel's work limit (`area_coverage` raises).
     """
+    shift = np.array([float(x), float(y)])
     for c in range(len(offsets) - 1):
-        if _distinct_shifted(starts[offsets[c] : offsets[c + 1]], x, y) < 3:
+        if not has_three_distinct(starts[offsets[c] : offsets[c + 1]] - shift):
             return -1.0
     count = 0
     ax, ay = np.empty(len(starts)), np.empty(len(starts))

@@ -17,7 +17,7 @@ from ..conventions import (
     check_subpixel_bits,
     short_repr,
 )
-from ..geometry import Polygon, as_coordinates, nested_array
+from ..geometry import Polygon, as_coordinates, check_three_distinct, nested_array
 from ..limits import check_memory, current_memory_limit
 from ..trace import Recorder, Trace, Tracer
 from . import kernels
@@ -307,11 +307,7 @@ def fill_polygons(
         check_memory(_batch_bytes(batch, width, height), what)
         few = np.flatnonzero(~kernels.three_distinct(batch))
         if few.size:
-            distinct = len(np.unique(batch[few[0]], axis=0))
-            raise ValueError(
-                f"'polygons'[{few[0]}]: contour 0 has {distinct} distinct vertices; "
-                "a contour needs at least 3"
-            )
+            check_three_distinct(batch[few[0]], f"'polygons'[{few[0]}]: contour 0")
         snapped_batch = _snap_batch(batch, sample, bits)
         if snapped_batch is not None:
             (count, size, _), (units, scale) = batch.shape, snapped_batch

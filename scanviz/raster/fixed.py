@@ -15,10 +15,12 @@ of two that holds every float64 coordinate exactly (Python ints if needed).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
+from numba import njit
 
 from ..conventions import MAX_SUBPIXEL_BITS, SAMPLE_MODES, check_choice, check_subpixel_bits
 from ..geometry import Polygon
@@ -70,14 +72,32 @@ class SnappedPolygon:
         return np.array([[float(self.to_pixels(int(u))) for u in row] for row in self.units])
 
 
-def exact_bits(values: np.ndarray) -> int:
-    """Fewest fractional bits that represent every float64 in `values` exactly.
+FLOAT64_FRACTION_BITS = 1074  # the smallest float64, 2**-1074, needs the most
 
-    >>> exact_bits(np.array([1.0, 0.75, -3.125]))
-    3
+
+def exact_bits(values: np.ndarray) -> int:
+    """Fewest fractional bits that represent every (finite) float64 in `values` exactly.
+
+    >>> exact_bits(np.array([1.0, 0.75, -3.125])), exact_bits(np.array([5e-324]))
+    (3, 1074)
     """
-    denominators = (Fraction(float(v)).denominator for v in np.unique(values))
-    return max((d.bit_length() - 1 for d in denominators), default=0)
+    values = np.asarray(values, dtype=np.float64)
+    if not np.isfinite(values).all():
+        raise ValueError("exact_bits takes finite values only")
+    return exact_bits_compiled(values, FLOAT64_FRACTION_BITS)
+
+
+@njit(cache=True)
+def exact_bits_compiled(values, most):
+    """`exact_bits` of a float64 array, or `most` + 1 once a value needs more (kernels stop there)."""
+    found = 0
+    for v in values.flat:
+        bits = 0
+        while bits <= most and math.floor(v) != v:
+            v *= 2.0  # exact: doubling a float64 changes only its exponent
+            bits += 1
+        found = max(found, bits)
+    return found
 
 
 def snap_units(vertices: np.ndarray, sample: str, bits: int) -> np.ndarray:

@@ -382,20 +382,26 @@ def count_spans(spans, width, height):
 
 
 @njit(cache=True)
+def has_three_distinct(xy):
+    """Whether (N, 2) vertices hold at least 3 distinct points (`geometry.Polygon`'s rule)."""
+    second = 0  # the first vertex unlike vertex 0, once found
+    for i in range(1, len(xy)):
+        x, y = xy[i, 0], xy[i, 1]
+        if x == xy[0, 0] and y == xy[0, 1]:
+            continue
+        if second == 0:
+            second = i
+        elif x != xy[second, 0] or y != xy[second, 1]:
+            return True
+    return False
+
+
+@njit(cache=True)
 def three_distinct(batch):
     """(T,) bool: which items of a (T, N, 2) float64 batch have at least 3 distinct vertices."""
     found = np.zeros(batch.shape[0], np.bool_)
     for t in range(batch.shape[0]):
-        second = 0  # the first vertex unlike vertex 0, once found
-        for i in range(1, batch.shape[1]):
-            x, y = batch[t, i, 0], batch[t, i, 1]
-            if x == batch[t, 0, 0] and y == batch[t, 0, 1]:
-                continue
-            if second == 0:
-                second = i
-            elif x != batch[t, second, 0] or y != batch[t, second, 1]:
-                found[t] = True
-                break
+        found[t] = has_three_distinct(batch[t])
     return found
 
 

@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..conventions import check_finite_rows
 from ..vectors import unit_vectors, vector_norm
 from .faces import face_corners
 
@@ -152,9 +153,8 @@ def _array(name: str, value: object, dtype, columns: int | None) -> np.ndarray:
             raise TypeError(f"{name!r} must hold integers; got {given.dtype} {given.tolist()}")
     if columns is not None and (array.ndim != 2 or array.shape[1] != columns):
         raise ValueError(f"{name!r} must be an (N, {columns}) array; got shape {array.shape}")
-    if array.dtype.kind == "f" and not np.isfinite(array).all():
-        row = int(np.argwhere(~np.isfinite(array))[0][0])
-        raise ValueError(f"{name!r} row {row} is not finite: {array[row].tolist()}")
+    if array.dtype.kind == "f":
+        check_finite_rows(name, array)
     array.setflags(write=False)
     return array
 

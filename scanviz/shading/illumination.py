@@ -32,6 +32,7 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 from numba import njit
 
+from ..conventions import check_finite, check_finite_rows
 from ..scene.faces import FaceCorners, face_corners, newell
 from ..scene.model import Light, Material
 from ..trace import Tracer
@@ -105,10 +106,7 @@ def _rows(name: str, value: object, columns: int, count: int | None = None) -> n
         raise ValueError(f"{name!r} must be an (N, {columns}) array; got shape {array.shape}")
     if count is not None and len(array) != count:
         raise ValueError(f"{name!r} must have one row per position ({count}); got {len(array)}")
-    if not np.isfinite(array).all():
-        row = int(np.argwhere(~np.isfinite(array))[0][0])
-        raise ValueError(f"{name!r} row {row} is not finite: {array[row].tolist()}")
-    return array
+    return check_finite_rows(name, array)
 
 
 def _vector(name: str, value: object, size: int = 3) -> np.ndarray:
@@ -118,9 +116,7 @@ def _vector(name: str, value: object, size: int = 3) -> np.ndarray:
         raise TypeError(f"{name!r} must be {size} numbers; got {value!r}") from None
     if array.shape != (size,):
         raise ValueError(f"{name!r} must have shape ({size},); got {array.shape}")
-    if not np.isfinite(array).all():
-        raise ValueError(f"{name!r} must be finite; got {array.tolist()}")
-    return array
+    return check_finite(name, array)
 
 
 def _materials(value: object, count: int) -> np.ndarray:

@@ -24,18 +24,10 @@ import numpy as np
 from numba import njit
 
 from .. import steps
+from ..conventions import finite_real
 from ..limits import check_memory
 
 _BYTES_PER_ENTRY = 8  # float64, built in place
-
-
-def _number(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name!r} must be a real number; got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError(f"{name!r} must be finite; got {value}")
-    return value
 
 
 def _decimal(value: float) -> Fraction:
@@ -55,9 +47,9 @@ def table_size(Ip: float, ks: float, r_plus_r0: float) -> int:
     >>> table_size(100, 0.29, 1), math.floor(100 * 0.29)
     (29, 28)
     """
-    Ip = _number("Ip", Ip)
-    ks = _number("ks", ks)
-    r_plus_r0 = _number("r_plus_r0", r_plus_r0)
+    Ip = finite_real("Ip", Ip)
+    ks = finite_real("ks", ks)
+    r_plus_r0 = finite_real("r_plus_r0", r_plus_r0)
     if Ip <= 0:
         raise ValueError(f"'Ip' (the light intensity) must be > 0; got {Ip}")
     if ks < 0:
@@ -68,7 +60,7 @@ def table_size(Ip: float, ks: float, r_plus_r0: float) -> int:
 
 
 def _exponent(n: object) -> float:
-    n = _number("n", n)
+    n = finite_real("n", n)
     if n <= 0:
         raise ValueError(f"'n' (the specular exponent) must be > 0; got {n}")
     return n

@@ -13,13 +13,12 @@ derivations.
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
 
-from ..conventions import check_choice
+from ..conventions import check_choice, check_finite, finite_real
 from ..geometry import as_coordinates
 from .illumination import _vector
 from .lut import specular_lut
@@ -31,14 +30,6 @@ COS_THETA, COS_SPECULAR, CHANNELS = 0, 1, slice(2, 5)  # rows of the stacked qua
 
 
 # --- validation at the boundary ----------------------------------------------------------
-
-
-def _real(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name!r} must be a real number; got {value!r}")
-    if not math.isfinite(value):
-        raise ValueError(f"{name!r} must be finite; got {value}")
-    return float(value)
 
 
 def _rgb(name: str, value: object) -> tuple[float, float, float]:
@@ -106,9 +97,7 @@ def _normals(value: object) -> np.ndarray:
         raise ValueError(
             f"'normals' must be a (3, 3) array (one row per vertex); got {array.shape}"
         )
-    if not np.isfinite(array).all():
-        raise ValueError(f"'normals' must be finite; got {array.tolist()}")
-    return array
+    return check_finite("normals", array)
 
 
 @dataclass(frozen=True)
@@ -159,7 +148,7 @@ class ReflectionModel:
         for name in ("Ia", "ka", "kd"):
             object.__setattr__(self, name, _rgb(name, getattr(self, name)))
         for name in ("Ip", "ks", "n", "r_plus_r0"):
-            object.__setattr__(self, name, _real(name, getattr(self, name)))
+            object.__setattr__(self, name, finite_real(name, getattr(self, name)))
         check_choice("specular", self.specular, SPECULAR_MODELS)
         # specular_lut checks Ip > 0, ks >= 0, r + r0 >= 1 and n > 0
         object.__setattr__(self, "table", specular_lut(self.Ip, self.ks, self.r_plus_r0, self.n))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..conventions import check_finite_rows
 from ..scene import Camera
 from ..scene.faces import face_corners
 from ..trace import Tracer
@@ -24,10 +25,7 @@ def as_points(
         raise ValueError(f"{name!r} must be an {wanted} array; got shape {array.shape}")
     if len(array) < min_rows:
         raise ValueError(f"{name!r} must have at least {min_rows} rows; got {len(array)}")
-    bad = np.flatnonzero(~np.isfinite(array).all(axis=1))
-    if bad.size:
-        raise ValueError(f"{name!r} row {bad[0]} is not finite: {array[bad[0]].tolist()}")
-    return array
+    return check_finite_rows(name, array)
 
 
 def flatten_faces(faces: object, vertex_count: int) -> tuple[np.ndarray, np.ndarray]:

@@ -27,6 +27,7 @@ from ..conventions import (
     SAMPLE_MODES,
     check_choice,
     check_raster_size,
+    check_rows,
     check_subpixel_bits,
 )
 from ..limits import check_memory
@@ -61,13 +62,8 @@ def _float_array(name: str, value: object, ndim: int) -> np.ndarray:
 
 def _check_range(name: str, array: np.ndarray, low: float, high: float, rule: str) -> None:
     """Raise naming the first row of `array` not finite or outside [low, high]."""
-    for broken, why in (
-        (~np.isfinite(array), "is not finite"),
-        ((array < low) | (array > high), rule),
-    ):
-        if broken.any():
-            row = int(np.argwhere(broken)[0][0])
-            raise ValueError(f"{name!r}[{row}] = {array[row].tolist()} {why}")
+    check_rows(name, array, ~np.isfinite(array), "is not finite")
+    check_rows(name, array, (array < low) | (array > high), rule)
 
 
 @dataclass(frozen=True)
