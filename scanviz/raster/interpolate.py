@@ -34,8 +34,10 @@ bounds: docs/interpolation.md.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 from numba import njit, prange
@@ -44,7 +46,7 @@ from .. import buffers, steps
 from ..threads import use_threads
 from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
 from .fixed import SnappedPolygon
-from .scanline import ActiveEdge, _emit_row, _insertion_sort, bucketed_edge_table
+from .scanline import ActiveEdge, AetItem, ScanRow, bucketed_edge_table, scan_rows
 
 # --- the formulas, shared with the compiled kernel -----------------------------------------
 
@@ -369,20 +371,41 @@ def _vertex_ends(edge: ActiveEdge, units: np.ndarray) -> tuple[int, int]:
     return (i, j) if edge.lower == (int(units[i, 0]), int(units[i, 1])) else (j, i)
 
 
-def _crossing_float(edge: ActiveEdge, exact: type) -> float:
-    """`crossing_x` of an active edge's exact crossing, its operands of type `exact`."""
-    crossing = edge.crossing
-    return float(crossing_x(exact(crossing.q), exact(crossing.r), exact(crossing.den)))
+def _edge_interpolant(edge: ActiveEdge, snapped: SnappedPolygon, vertex_values, y: int):
+    """The values of an edge entering the AET on row y, directly from its lower end."""
+    lower, upper = _vertex_ends(edge, snapped.units)
+    y_lower, y_upper = edge.lower[1] / snapped.scale, edge.upper[1] / snapped.scale
+    return EdgeInterpolant(vertex_values[lower], vertex_values[upper], y_lower, y_upper, y)
 
 
-def _inside_pairs(active: list[ActiveEdge], width: int):
-    """Yield (left, right, x_start, x_end, winding) for the nonzero-winding spans of a row."""
-    winding = 0
-    for left, right in zip(active, active[1:], strict=False):
-        winding += left.winding
-        start, end = max(left.crossing.ceil(), 0), min(right.crossing.ceil(), width)
-        if winding and start < end:
-            yield left, right, start, end, winding
+def _crossing_float(x: object, edge: ActiveEdge, exact: type) -> float:
+    """An AET x as the float `crossing_x` makes of it, its operands of type `exact`.
+
+    The reference ``aet_update`` keeps x = q + r/den on the grid of the edge's
+    crossing (x's denominator divides den), and (q, r, den) give the compiled
+    kernel's float to the bit. Any other x (a replaced step's) is rounded directly.
+    """
+    den = edge.crossing.den
+    if isinstance(x, int | Fraction) and den % x.denominator == 0:
+        q, rest = divmod(x.numerator, x.denominator)
+        return float(crossing_x(exact(q), exact(rest * (den // x.denominator)), exact(den)))
+    return float(x)  # type: ignore[arg-type]
+
+
+def _bounding_pair(aet: list[AetItem], y: int, start: int, end: int) -> int:
+    """k such that AET items k and k + 1 bound the span [start, end) of row y.
+
+    The span must lie within [ceil(x_k), ceil(x_k+1)) of a consecutive pair of
+    crossings: the reference ``span_rule`` cuts exactly those runs (clipped to
+    the raster), and a replaced one may shorten them.
+    """
+    for k in range(len(aet) - 1):
+        if math.ceil(aet[k].x) <= start and end <= math.ceil(aet[k + 1].x):
+            return k
+    raise ValueError(
+        f"span_rule returned the span [{start}, {end}) on row {y}, which lies between no two "
+        "consecutive crossings of the AET: its values cannot be interpolated between two edges"
+    )
 
 
 def _span(
@@ -397,6 +420,16 @@ def _span(
     )
 
 
+def _interpolated_spans(row: ScanRow, xs: list[float], interpolants, z_row: float, dzdx: float):
+    """The `InterpolatedSpan` of each span of `row`, between the AET edges that bound it."""
+    spans = []
+    for start, end, _ in row.spans:
+        k = _bounding_pair(row.aet, row.y, start, end)
+        left, right = interpolants[row.aet[k].edge], interpolants[row.aet[k + 1].edge]
+        spans.append(_span(row.y, start, end, xs[k], xs[k + 1], left, right, z_row, dzdx))
+    return spans
+
+
 def interpolate_rows(
     snapped: SnappedPolygon,
     plane: Plane,
@@ -409,12 +442,15 @@ def interpolate_rows(
 ) -> Iterator[tuple[int, list[InterpolatedSpan]]]:
     """Scan-convert one contour with ET/AET, interpolating depth and values; yield each row.
 
-    The spans are exactly `scan_convert`'s (nonzero rule): the same edge
-    table, exact crossings and re-sort by x. Each active edge also carries its
-    values and d/dy; rows yield (y, spans) for every scanned row. A tracer
-    receives the scan events (`edge_table_built`, `edges_retired`,
-    `edges_activated`, `aet_sorted`, `span`) and, per row, `edge_values` and
-    one `span_values` per span.
+    The rows, AETs and spans are those of `scan_rows` (nonzero rule), the walk
+    `scan_convert` makes, so the steps ``aet_update`` and ``span_rule`` drive
+    it as they drive `scan_convert`. Each active edge also carries its values
+    and d/dy; each span is interpolated between the two AET edges that bound
+    it, x_k and x_k+1 with ceil(x_k) <= x_start and x_end <= ceil(x_k+1).
+    Rows yield (y, spans) for every scanned row. A tracer receives the scan
+    events (`edge_table_built`, `edges_retired`, `edges_activated`,
+    `aet_sorted`, `span`) and, per row, `edge_values` and one `span_values`
+    per span.
 
     Parameters
     ----------
@@ -426,6 +462,12 @@ def interpolate_rows(
         Per-vertex quantities to interpolate (see `vertex_channels`).
     width, height : int
         Raster size; spans are clipped to it.
+
+    Raises
+    ------
+    ValueError
+        If a replaced ``span_rule`` returns a span that no two consecutive AET
+        crossings bound.
 
     Examples
     --------
@@ -444,65 +486,41 @@ def interpolate_rows(
     """
     exact = np.int64 if snapped.compilable else int  # operand type of `crossing_x`, as compiled
     vertex_values = channels.tolist()
-    _, buckets = bucketed_edge_table(snapped, height, trace=trace, polygon=polygon)
+    table = bucketed_edge_table(snapped, height, trace=trace, polygon=polygon)
     interpolants: dict[int, EdgeInterpolant] = {}  # by edge id, for the active edges
-    active: list[ActiveEdge] = []
-    pending = sorted(buckets)
-    y = pending[0] if pending else height
     z_row, z_carry, previous_row = 0.0, 0.0, -2  # no row yet
-    while y < height and (active or pending):
-        if not active and pending[0] > y:
-            y = pending[0]  # skip empty rows
-            if y >= height:
-                break
-        retired = [e for e in active if e.row_end <= y]
-        active = [e for e in active if e.row_end > y]
-        for edge in active:  # x and the values one row up
-            edge.crossing.step()
-            interpolants[edge.edge].step()
-        entering = buckets.get(y, [])
-        if pending and pending[0] == y:
-            pending.pop(0)
-        for edge in entering:  # x and the values on the first row, directly from the lower end
-            edge.crossing.start(y)
-            lower, upper = _vertex_ends(edge, snapped.units)
-            interpolants[edge.edge] = EdgeInterpolant(
-                vertex_values[lower], vertex_values[upper],
-                edge.lower[1] / snapped.scale, edge.upper[1] / snapped.scale, y,
-            )  # fmt: skip
-        active.extend(entering)
-        swaps = _insertion_sort(active)
+    for row in scan_rows(snapped, table, width, height, trace=trace, polygon=polygon):
+        y = row.y
+        for edge in row.retired:
+            interpolants.pop(edge.edge, None)
+        for interpolant in interpolants.values():  # the values one row up
+            interpolant.step()
+        for edge in row.entering:
+            interpolants[edge.edge] = _edge_interpolant(edge, snapped, vertex_values, y)
         if y == previous_row + 1:  # between rows: z_row += dz/dy
             z_row, z_carry = compensated_step(z_row, z_carry, plane.dzdy)
         else:
             z_row, z_carry = plane.depth(0.0, y), 0.0
         previous_row = y
-        pairs = list(_inside_pairs(active, width))
-        spans = [
-            _span(y, start, end, _crossing_float(left, exact), _crossing_float(right, exact),
-                  interpolants[left.edge], interpolants[right.edge], z_row, plane.dzdx)
-            for left, right, start, end, _ in pairs
-        ]  # fmt: skip
+        xs = [_crossing_float(item.x, table.edges[item.edge], exact) for item in row.aet]
+        spans = _interpolated_spans(row, xs, interpolants, z_row, plane.dzdx)
         if trace is not None:
-            _emit_row(trace, polygon, y, retired, entering, active, swaps,
-                      [(start, end, winding) for _, _, start, end, winding in pairs], snapped)  # fmt: skip
-            _emit_values(trace, polygon, y, z_row, active, spans, interpolants, snapped, exact)
+            _emit_values(trace, polygon, y, z_row, row.aet, xs, spans, interpolants, snapped)
         yield y, spans
-        y += 1
 
 
-def _emit_values(trace, polygon, y, z_row, active, spans, interpolants, snapped, exact) -> None:
-    """`edge_values` and `span_values` of row y, x in the caller's frame."""
+def _emit_values(trace, polygon, y, z_row, aet, xs, spans, interpolants, snapped) -> None:
+    """`edge_values` and `span_values` of row y, x in the caller's frame (`xs`: the AET's x)."""
     offset = snapped.shift / snapped.scale
-    if active and trace.wants("edge_values", polygon=polygon, y=y):
+    if aet and trace.wants("edge_values", polygon=polygon, y=y):
         entries = tuple(
             EdgeValueEntry(
-                edge=e.edge,
-                x=_crossing_float(e, exact) + offset,
-                values=tuple(interpolants[e.edge].values),
-                dvdy=tuple(interpolants[e.edge].dvdy),
+                edge=item.edge,
+                x=x + offset,
+                values=tuple(interpolants[item.edge].values),
+                dvdy=tuple(interpolants[item.edge].dvdy),
             )
-            for e in active
+            for item, x in zip(aet, xs, strict=True)
         )
         trace.emit(EdgeValues(polygon, y, float(z_row), entries))
     if spans and trace.wants("span_values", polygon=polygon, y=y):

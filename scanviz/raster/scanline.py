@@ -20,7 +20,10 @@ first x from its integer crossing, x = q + r/den (quotient plus remainder), and
 from then on the AET holds the x that ``aet_update`` returns, so a replaced
 step shows its consequences in the trace. The textbook ``x += dx/dy`` in
 float32 or float64 is there to show the drift: then the AET's x and dx/dy are
-numpy floats of that type. This module is the readable reference;
+numpy floats of that type. Steps 2 and 3 are one walk, `scan_rows`, which
+`scan_reference` and the interpolating walk of the traced z-buffer
+(`scanviz.raster.interpolate.interpolate_rows`) both consume, so a replaced
+step shows in both. This module is the readable reference;
 `scanviz.raster.kernels` is its compiled twin and produces the same spans.
 """
 
@@ -29,6 +32,7 @@ from __future__ import annotations
 import math
 import numbers
 import operator
+from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import NamedTuple
@@ -82,9 +86,6 @@ class ExactCrossing:
 
     def ceil(self) -> int:
         return self.q + (self.r > 0)
-
-    def before(self, other: ExactCrossing) -> bool:
-        return self.q < other.q or (self.q == other.q and self.r * other.den < other.r * self.den)
 
     def exact(self) -> Fraction:
         return self.q + Fraction(self.r, self.den)
@@ -363,10 +364,9 @@ def _edge_record(edge: ActiveEdge, snapped: SnappedPolygon) -> EdgeRecord:
     )
 
 
-def _aet_entry(edge: ActiveEdge, snapped: SnappedPolygon, x: object = None) -> AetEntry:
-    """The trace record of an active edge; `x` is its AET x (default: its crossing's)."""
-    aet_x = _crossing_value(edge.crossing) if x is None else x
-    x_float, x_exact = _x_values(aet_x, snapped.to_pixels(0))
+def _aet_entry(edge: ActiveEdge, snapped: SnappedPolygon, x: object) -> AetEntry:
+    """The trace record of an active edge whose AET x is `x`."""
+    x_float, x_exact = _x_values(x, snapped.to_pixels(0))
     dxdy, dxdy_exact = _slope_values(edge.crossing)
     return AetEntry(
         edge=edge.edge,
@@ -379,13 +379,11 @@ def _aet_entry(edge: ActiveEdge, snapped: SnappedPolygon, x: object = None) -> A
     )
 
 
-def _insertion_sort(items: list, before=None) -> int:
+def _insertion_sort(items: list, before) -> int:
     """Sort `items` in place, as the notes' bubble sort does; return the swaps made.
 
-    ``before(a, b)`` says whether `a` goes strictly before `b`; by default the
-    items are active edges, ordered by their crossings' x. Ties keep their order.
+    ``before(a, b)`` says whether `a` goes strictly before `b`. Ties keep their order.
     """
-    before = before or (lambda a, b: a.crossing.before(b.crossing))
     swaps = 0
     for i in range(1, len(items)):
         j = i
@@ -569,9 +567,16 @@ def _row_spans(crossings: list[tuple], rule: str, width: int) -> list[tuple[int,
     return [span for span in clipped if span[0] < span[1]]
 
 
+class EdgeTable(NamedTuple):
+    """The edge table: every edge (in contour order), and those that cross raster rows by first row."""
+
+    edges: list[ActiveEdge]
+    buckets: dict[int, list[ActiveEdge]]
+
+
 def bucketed_edge_table(
     snapped: SnappedPolygon, height: int, arithmetic: str = "exact", trace=None, polygon: int = 0
-) -> tuple[list[ActiveEdge], dict[int, list[ActiveEdge]]]:
+) -> EdgeTable:
     """The edge table (traced as ``edge_table_built``) and its edges by the first raster row they cross.
 
     Rows below the raster are never scanned: an edge starting there enters at row 0.
@@ -584,7 +589,79 @@ def bucketed_edge_table(
         row_start = max(edge.bucket, 0)
         if edge.crossing is not None and row_start < min(edge.row_end, height):
             buckets.setdefault(row_start, []).append(edge)
-    return edges, buckets
+    return EdgeTable(edges, buckets)
+
+
+class ScanRow(NamedTuple):
+    """One scanned row of the ET/AET walk.
+
+    `retired` and `entering` are the ET edges ``aet_update`` retired and took
+    in on row `y`; `aet` is the row's AET as it returned it (the reference
+    sorts it by x), and `swaps` the exchanges its re-sort made; `spans` are
+    ``span_rule``'s (x_start, x_end, winding), clipped to the raster.
+    """
+
+    y: int
+    retired: list[ActiveEdge]
+    entering: list[ActiveEdge]
+    aet: list[AetItem]
+    swaps: int
+    spans: list[tuple[int, int, int]]
+
+
+def scan_rows(
+    snapped: SnappedPolygon,
+    table: EdgeTable,
+    width: int,
+    height: int,
+    *,
+    rule: str = "nonzero",
+    arithmetic: str = "exact",
+    trace=None,
+    polygon: int = 0,
+) -> Iterator[ScanRow]:
+    """Walk the edge table up the raster: yield a `ScanRow` per scanned row, emitting its events.
+
+    Steps 2 and 3 of the module docstring, from the step table: ``aet_update``
+    makes each row's AET and ``span_rule`` cuts its spans, so a replaced step
+    drives every traced loop built on this walk. `table` is
+    `bucketed_edge_table`'s, built with the same `arithmetic`. Rows from the
+    first bucket up are scanned until the AET empties; empty rows are skipped.
+
+    Examples
+    --------
+    >>> from scanviz import Polygon
+    >>> from scanviz.raster.fixed import snap
+    >>> square = snap(Polygon([(0, 0), (2, 0), (2, 2), (0, 2)]))
+    >>> for row in scan_rows(square, bucketed_edge_table(square, 4), 4, 4):
+    ...     print(row.y, [item.x for item in row.aet], row.spans)
+    0 [Fraction(0, 1), Fraction(2, 1)] [(0, 2, 1)]
+    1 [Fraction(0, 1), Fraction(2, 1)] [(0, 2, 1)]
+    2 [] []
+    """
+    edges, buckets = table
+    aet: list[AetItem] = []
+    waiting: list[ActiveEdge] = []  # entering edges `aet_update` did not take (none by default)
+    pending = sorted(buckets)
+    y = pending[0] if pending else height
+    while y < height and (aet or waiting or pending):
+        if not aet and not waiting and pending[0] > y:
+            y = pending[0]  # skip empty rows
+            if y >= height:
+                break
+        if pending and pending[0] == y:
+            waiting += buckets[pending.pop(0)]
+        retired, entering, aet, swaps = _update_aet(aet, y, waiting, edges, arithmetic)
+        if waiting:
+            gone = {e.edge for e in entering + retired}  # out of the ET: into the AET or retired
+            waiting = [e for e in waiting if e.edge not in gone]
+        # An empty AET has no spans: the span rule is not asked (one call per aet_sorted event).
+        spans = _row_spans([(i.x, edges[i.edge].winding) for i in aet], rule, width) if aet else []
+        row = ScanRow(y, retired, entering, aet, swaps, spans)
+        if trace is not None:
+            _emit_row(trace, polygon, row, edges, snapped)
+        yield row
+        y += 1
 
 
 def scan_reference(
@@ -605,55 +682,44 @@ def scan_reference(
     outgrow the memory limit.
     """
     most_spans = current_memory_limit() // LISTED_SPAN_BYTES
-    edges, buckets = bucketed_edge_table(snapped, height, arithmetic, trace, polygon)
+    table = bucketed_edge_table(snapped, height, arithmetic, trace, polygon)
+    edges = table.edges
     stats = ScanStats(edges=len(edges), kept_for_topology=sum(not e.crosses_rows for e in edges))
     spans: list[tuple[int, int, int]] = []
-    aet: list[AetItem] = []
-    waiting: list[ActiveEdge] = []  # entering edges `aet_update` did not take (none by default)
-    pending = sorted(buckets)
-    y = pending[0] if pending else height
-    while y < height and (aet or waiting or pending):
-        if not aet and not waiting and pending[0] > y:
-            y = pending[0]  # skip empty rows
-            if y >= height:
-                break
-        if pending and pending[0] == y:
-            waiting += buckets[pending.pop(0)]
-        retired, entering, aet, swaps = _update_aet(aet, y, waiting, edges, arithmetic)
-        if waiting:
-            gone = {e.edge for e in entering + retired}  # out of the ET: into the AET or retired
-            waiting = [e for e in waiting if e.edge not in gone]
+    walk = scan_rows(
+        snapped,
+        table,
+        width,
+        height,
+        rule=rule,
+        arithmetic=arithmetic,
+        trace=trace,
+        polygon=polygon,
+    )
+    for row in walk:
         stats.rows_scanned += 1
-        stats.swaps += swaps
-        stats.max_active = max(stats.max_active, len(aet))
-        # An empty AET has no spans: the span rule is not asked (one call per aet_sorted event).
-        row_spans = (
-            _row_spans([(i.x, edges[i.edge].winding) for i in aet], rule, width) if aet else []
-        )
-        spans.extend((y, start, end) for start, end, _ in row_spans)
+        stats.swaps += row.swaps
+        stats.max_active = max(stats.max_active, len(row.aet))
+        spans.extend((row.y, start, end) for start, end, _ in row.spans)
         if len(spans) > most_spans:
             check_memory(
                 len(spans) * LISTED_SPAN_BYTES,
-                f"scan conversion (reference): {len(spans)} spans by row {y} of {height}",
+                f"scan conversion (reference): {len(spans)} spans by row {row.y} of {height}",
             )
-        if trace is not None:
-            active, xs = [edges[item.edge] for item in aet], [item.x for item in aet]
-            _emit_row(trace, polygon, y, retired, entering, active, swaps, row_spans, snapped, xs)
-        y += 1
     stats.spans = len(spans)
     return np.array(spans, dtype=np.int64).reshape(-1, 3), stats
 
 
-def _emit_row(trace, polygon, y, retired, entering, active, swaps, row_spans, snapped, xs=None):
-    """One row's events; `xs` are the AET's x of the `active` edges (default: their crossings')."""
-    if retired and trace.wants("edges_retired", polygon=polygon, y=y):
-        trace.emit(EdgesRetired(polygon, y, tuple(e.edge for e in retired)))
-    if entering and trace.wants("edges_activated", polygon=polygon, y=y):
-        trace.emit(EdgesActivated(polygon, y, tuple(e.edge for e in entering)))
-    if active and trace.wants("aet_sorted", polygon=polygon, y=y):
-        xs = [None] * len(active) if xs is None else xs
-        entries = tuple(_aet_entry(e, snapped, x) for e, x in zip(active, xs, strict=True))
-        trace.emit(AetSorted(polygon, y, entries, swaps))
+def _emit_row(trace, polygon: int, row: ScanRow, edges: list[ActiveEdge], snapped) -> None:
+    """The events of one scanned row, the AET entries showing the x that ``aet_update`` returned."""
+    y = row.y
+    if row.retired and trace.wants("edges_retired", polygon=polygon, y=y):
+        trace.emit(EdgesRetired(polygon, y, tuple(e.edge for e in row.retired)))
+    if row.entering and trace.wants("edges_activated", polygon=polygon, y=y):
+        trace.emit(EdgesActivated(polygon, y, tuple(e.edge for e in row.entering)))
+    if row.aet and trace.wants("aet_sorted", polygon=polygon, y=y):
+        entries = tuple(_aet_entry(edges[item.edge], snapped, item.x) for item in row.aet)
+        trace.emit(AetSorted(polygon, y, entries, row.swaps))
     if trace.wants("span", polygon=polygon, y=y):
-        for start, end, winding in row_spans:
+        for start, end, winding in row.spans:
             trace.emit(Span(polygon, y, start, end, winding))
