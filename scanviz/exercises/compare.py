@@ -72,6 +72,15 @@ class Difference:
         return show(value)
 
 
+def first_places(places: Sequence[str], more: str = " ...", most: int = 12) -> str:
+    """The first `most` of `places` joined with commas, then `more` if there are others.
+
+    >>> first_places(["a", "b", "c"], most=2)
+    'a, b ...'
+    """
+    return ", ".join(places[:most]) + (more if len(places) > most else "")
+
+
 def show(value: object, limit: int = 160, *, nested: bool = False) -> str:
     """A value as a student reads it: exact fractions with their mixed form and decimal.
 
@@ -250,8 +259,9 @@ class TraceDifference:
             else "  no event matched before it",
         ]
         if self.later:
-            shown_places = ", ".join(self.later[:12]) + (" ..." if len(self.later) > 12 else "")
-            lines.append(f"  it also differs at: {shown_places} ({len(self.later)} places)")
+            lines.append(
+                f"  it also differs at: {first_places(self.later)} ({len(self.later)} places)"
+            )
         return "\n".join(lines)
 
 

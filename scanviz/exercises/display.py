@@ -19,7 +19,14 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..trace.display import Formatter, fields_line, mask_layout, place, scroll_box
-from .compare import MISSING, Difference, RasterDifference, aligned, first_difference
+from .compare import (
+    MISSING,
+    Difference,
+    RasterDifference,
+    aligned,
+    first_difference,
+    first_places,
+)
 from .jail.wire import Opaque, record_fields, record_name
 from .verdict import NO_MATCH, Verdict
 
@@ -326,15 +333,13 @@ def verdict_html(verdict: Verdict, yours=None, reference=None, rtol: float = 0.0
         else:
             parts.append(difference_html(t.difference, "the event", rtol))
         if t.later:
-            places = ", ".join(t.later[:12]) + (" …" if len(t.later) > 12 else "")
+            places = first_places(t.later, " …")
             parts.append(
                 f"<div>it also differs at: {html.escape(places)} ({len(t.later)} places)</div>"
             )
     if verdict.calls_total:
         if verdict.wrong_calls:
-            places = ", ".join(verdict.wrong_calls[:12]) + (
-                " …" if len(verdict.wrong_calls) > 12 else ""
-            )
+            places = first_places(verdict.wrong_calls, " …")
             parts.append(
                 f"<div>with the reference state fed in at every call, yours differs at "
                 f"{len(verdict.wrong_calls)} of {verdict.calls_total}: {html.escape(places)}</div>"

@@ -19,6 +19,7 @@ from .compare import (
     RasterDifference,
     TraceDifference,
     first_difference,
+    first_places,
     raster_difference,
     trace_difference,
     traces_equal,
@@ -90,9 +91,7 @@ class Verdict:
             lines.extend("  " + line for line in self.trace.describe().splitlines())
         if self.calls_total:
             if self.wrong_calls:
-                places = ", ".join(self.wrong_calls[:12]) + (
-                    " ..." if len(self.wrong_calls) > 12 else ""
-                )
+                places = first_places(self.wrong_calls)
                 lines.append(
                     f"  with the reference state fed in at every call, yours differs at "
                     f"{len(self.wrong_calls)} of {self.calls_total}: {places}"

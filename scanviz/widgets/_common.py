@@ -58,6 +58,18 @@ def html_table(
     )
 
 
+def listed(items, empty: str = "") -> str:
+    """Items in words: 'a', 'a and b', 'a, b and c' (`empty` for none).
+
+    >>> listed([1, 2, 3]), listed(["x"]), listed([], "nothing")
+    ('1, 2 and 3', 'x', 'nothing')
+    """
+    words = [str(item) for item in items]
+    if len(words) < 2:
+        return words[0] if words else empty
+    return ", ".join(words[:-1]) + " and " + words[-1]
+
+
 def swatch(color: Sequence[float]) -> str:
     """A small colored square for an RGB color in [0, 1] (HTML)."""
     r, g, b = (int(round(255 * min(max(float(c), 0.0), 1.0))) for c in color[:3])

@@ -20,7 +20,7 @@ import numpy as np
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.bsp import BSP
-from ._common import WIDEST, html_table, quiet_canvas, say, status_label
+from ._common import WIDEST, html_table, listed, quiet_canvas, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
@@ -254,9 +254,9 @@ class BspView:
                 "the root" if event.parent < 0 else f"the {event.side} child of node {event.parent}"
             )
             sides = [
-                f"{_listed(event.front)} in front of its plane",
-                f"{_listed(event.back)} behind",
-            ] + ([f"{_listed(event.coplanar)} on it"] if event.coplanar else [])
+                f"{listed(event.front, 'nothing')} in front of its plane",
+                f"{listed(event.back, 'nothing')} behind",
+            ] + ([f"{listed(event.coplanar, 'nothing')} on it"] if event.coplanar else [])
             if not (event.front or event.back or event.coplanar):
                 sides = ["a leaf, as no other piece is left in its part of space"]
             chosen = next((c for c in event.candidates if c.label == event.piece), None)
@@ -273,7 +273,7 @@ class BspView:
             )
         visits = sum(e.kind == "bsp_visited" for e in self.steps[:step])
         before = self.tree.painted[: self.tree.painted_before[visits - 1]]
-        done = _listed(label for n in before for label in self.tree.nodes[n].pieces)
+        done = listed((label for n in before for label in self.tree.nodes[n].pieces), "nothing")
         node = self.tree.nodes[event.node]
         if node.front < 0 and node.back < 0:
             after = f"after {done}" if before else "the first"
@@ -334,14 +334,6 @@ def _shared_points(front, behind) -> np.ndarray:
     theirs = {tuple(v) for v in behind}
     shared = [v[:2] for v in front if tuple(v) in theirs]
     return np.array(shared or [(np.nan, np.nan)], np.float64).reshape(-1, 2)
-
-
-def _listed(labels) -> str:
-    """'5a and 1', 'nothing'."""
-    labels = list(labels)
-    if not labels:
-        return "nothing"
-    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
 
 
 def _names(labels) -> str:

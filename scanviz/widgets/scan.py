@@ -17,7 +17,7 @@ from ..raster import scan_convert
 from ..trace import AetSorted, Trace
 from ..trace.display import scroll_box
 from ..trace.table import format_number
-from ._common import WIDEST, html_table, new_figure
+from ._common import WIDEST, html_table, listed, new_figure
 from .stepper import (
     SampleDots,
     Stepper,
@@ -60,12 +60,6 @@ def aet_changes(previous: AetSorted | None, current: AetSorted) -> dict[int, str
         elif (old.x_exact, old.x) != (entry.x_exact, entry.x):
             changes[entry.edge] = "x changed"
     return changes
-
-
-def _listed(items) -> str:
-    """'a', 'a and b', 'a, b and c'."""
-    items = list(items)
-    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
 def _edge_name(record) -> str:
@@ -141,7 +135,7 @@ class ScanNarrator:
         for record in sorted(event.edges, key=lambda e: (e.bucket, e.edge)):
             if not record.kept_for_topology:
                 buckets.setdefault(record.bucket, []).append(f"e{record.edge}")
-        placed = "; ".join(f"row {row} gets {_listed(names)}" for row, names in buckets.items())
+        placed = "; ".join(f"row {row} gets {listed(names)}" for row, names in buckets.items())
         kept = [
             f"{_edge_name(e)} is "
             + ("horizontal" if e.horizontal else "between two sample rows")
@@ -159,11 +153,11 @@ class ScanNarrator:
     def _edges_activated(self, step, event) -> str:
         records = self.edge_records(step)
         entering = [records[e] for e in event.edges if e in records]
-        names = _listed([_edge_name(e) for e in entering] or [f"e{e}" for e in event.edges])
+        names = listed([_edge_name(e) for e in entering] or [f"e{e}" for e in event.edges])
         verb, their = ("enters", "its") if len(event.edges) == 1 else ("enter", "their")
         if not entering:  # the trace was filtered: no edge table to read ymin from
             return f"Row y = {event.y}: {names} {verb} the AET: this row is {their} bucket."
-        ymins = _listed(sorted({f"{e.ymin:g}" for e in entering}, key=float))
+        ymins = listed(sorted({f"{e.ymin:g}" for e in entering}, key=float))
         if all(e.bucket < event.y for e in entering):
             return (
                 f"Row y = {event.y}: {names} {verb} the AET on the raster's first scanned row: "
@@ -177,11 +171,11 @@ class ScanNarrator:
     def _edges_retired(self, step, event) -> str:
         records = self.edge_records(step)
         leaving = [records[e] for e in event.edges if e in records]
-        names = _listed([_edge_name(e) for e in leaving] or [f"e{e}" for e in event.edges])
+        names = listed([_edge_name(e) for e in leaving] or [f"e{e}" for e in event.edges])
         verb, their = ("leaves", "its") if len(event.edges) == 1 else ("leave", "their")
         if not leaving:  # the trace was filtered: no edge table to read ymax from
             return f"Row y = {event.y}: {names} {verb} the AET: the row reached {their} ymax."
-        ymaxes = _listed(sorted({f"{e.ymax:g}" for e in leaving}, key=float))
+        ymaxes = listed(sorted({f"{e.ymax:g}" for e in leaving}, key=float))
         return (
             f"Row y = {event.y}: {names} {verb} the AET because the row's samples "
             f"(y = {self._sample_y(event.y)}) reached {their} ymax {ymaxes}: an edge is active "
@@ -203,7 +197,7 @@ class ScanNarrator:
         stayed = previous is not None and len(event.entries) > len(entered)
         clauses = ["the edges already active moved their x by dx/dy"] if stayed else []
         if entered:
-            clauses.append(f"{_listed(entered)} entered")
+            clauses.append(f"{listed(entered)} entered")
         order = ", ".join(f"e{e.edge} at {format_number(e.x, e.x_exact)}" for e in event.entries)
         swaps = (
             "already in order, no swap"

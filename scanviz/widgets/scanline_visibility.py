@@ -19,7 +19,7 @@ from matplotlib.patches import Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.scanline import Scanline
-from ._common import WIDEST, fmt, html_table, new_figure, say, status_label
+from ._common import WIDEST, fmt, html_table, listed, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
@@ -212,14 +212,14 @@ class ScanlineVisibilityView:
             )
             return f"The sorted surface table lists {len(event.surfaces)} polygons by first row: {rows}."
         if event.kind == "active_surfaces":
-            changes = [f"{_listed(event.entered)} enter{'s' if len(event.entered) == 1 else ''}"]
+            changes = [f"{listed(event.entered)} enter{'s' if len(event.entered) == 1 else ''}"]
             changes = changes if event.entered else []
             if event.exhausted:
                 changes.append(
-                    f"{_listed(event.exhausted)} {'is' if len(event.exhausted) == 1 else 'are'} exhausted"
+                    f"{listed(event.exhausted)} {'is' if len(event.exhausted) == 1 else 'are'} exhausted"
                 )
             what = " and ".join(changes) or "no polygon enters or leaves"
-            return f"Row y = {event.y}: {what}; the active surfaces are {_listed(event.active) or 'none'}."
+            return f"Row y = {event.y}: {what}; the active surfaces are {listed(event.active) or 'none'}."
         span = (
             f"{event.x_start}"
             if event.x_end - event.x_start == 1
@@ -228,7 +228,7 @@ class ScanlineVisibilityView:
         where = f"Row {event.y}, x {span}"
         if not event.surfaces:
             return f"{where}: no surface covers it, so it shows the background."
-        depths = _listed(
+        depths = listed(
             f"{p} (z {fmt(z, 3)})" for p, z in zip(event.surfaces, event.depths, strict=True)
         )
         if event.reused:
@@ -276,12 +276,6 @@ class ScanlineVisibilityView:
             for i, _ in here
         ]
         self.spans.value = "<b>spans of the row</b>" + html_table(SPAN_COLUMNS, rows, states=states)
-
-
-def _listed(ids) -> str:
-    """'2', '0 and 1', '0, 1 and 2' ('' for none)."""
-    ids = [str(p) for p in ids]
-    return ", ".join(ids[:-1]) + " and " + ids[-1] if len(ids) > 1 else "".join(ids)
 
 
 def _surface_state(record, row) -> str:

@@ -20,7 +20,7 @@ from matplotlib.ticker import MaxNLocator
 from ..pipeline.viewing import view_scene
 from ..trace import Recorder
 from ..transform.clip import CLIP_PLANES
-from ._common import html_table, new_figure
+from ._common import html_table, listed, new_figure
 from .stepper import Stepper, figure_widget, refresh_figure
 
 KINDS = ("polygons_transformed", "face_culled", "polygon_clipped")
@@ -70,8 +70,7 @@ def _planes(bits: int) -> list[str]:
 
 def _plane_words(bits: int) -> str:
     names = _planes(bits)
-    listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
-    return listed + (" plane" if len(names) == 1 else " planes")
+    return listed(names) + (" plane" if len(names) == 1 else " planes")
 
 
 class ViewingPipelineView:

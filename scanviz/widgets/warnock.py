@@ -21,7 +21,7 @@ from matplotlib.patches import Patch, Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import solve
 from ..visibility.warnock import CASES, Warnock
-from ._common import WIDEST, html_table, new_figure, say, status_label
+from ._common import WIDEST, html_table, listed, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
@@ -218,7 +218,7 @@ def _polygons(ids) -> str:
         return "no polygon"
     if len(ids) == 1:
         return f"polygon {ids[0]}"
-    return "polygons " + ", ".join(ids[:-1]) + " and " + ids[-1]
+    return "polygons " + listed(ids)
 
 
 def warnock_stepper(polygons, width: int, height: int, *, prune: bool = True, **options) -> Stepper:
