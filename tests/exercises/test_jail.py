@@ -10,6 +10,7 @@ import json
 import os
 import socket
 import subprocess
+import tempfile
 import time
 from pathlib import Path
 
@@ -352,12 +353,23 @@ def test_the_user_jail_runs_answers_as_nobody_without_processes_or_network(user_
         cases = [(c, False) for c in SPAN.public]
         result = judge_answer(session, SPAN, source, cases, REFERENCES, LIMITS.case_seconds)
     assert result.status == "passed"
-    assert result.output.strip() == "[65534, 'PermissionError', 'PermissionError', 'PermissionError']"
+    assert (
+        result.output.strip() == "[65534, 'PermissionError', 'PermissionError', 'PermissionError']"
+    )
 
 
-def test_the_user_jail_refuses_while_nobody_can_read_the_reference(user_jail, tmp_path):
+def test_the_user_jail_refuses_while_nobody_can_read_the_reference(
+    user_jail, tmp_path, monkeypatch
+):
     from scanviz.exercises.grading import jail_or_refuse
 
-    assert launch.readable_by_nobody(launch.reference_file())  # this checkout is open to all
+    # A reference open to all, wherever this checkout lives (a private clone is not).
+    open_folder = Path(tempfile.mkdtemp(prefix="scanviz-open-"))
+    open_folder.chmod(0o755)
+    reference = open_folder / "scanline.py"
+    reference.write_text("# the reference\n")
+    reference.chmod(0o644)
+    monkeypatch.setattr(launch, "reference_file", lambda: reference)
+    assert launch.readable_by_nobody(launch.reference_file())
     with pytest.raises(ValueError, match="the 'user' jail runs answers as the user nobody"):
         jail_or_refuse("user", tmp_path)
