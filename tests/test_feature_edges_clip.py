@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from scanviz import steps
 from scanviz.conventions import COORD_LIMIT
-from scanviz.pipeline.edges import feature_edge_runs
+from scanviz.pipeline.feature_lines import feature_edge_runs
 from scanviz.raster.lines import midpoint_line, midpoint_line_window, midpoint_step, paint_lines
 from scanviz.scene.builtin import builtin_scene
 

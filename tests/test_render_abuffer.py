@@ -231,7 +231,7 @@ def test_issue8_d1_terrain_renders_through_the_a_buffer(shading, visibility):
 
 
 def test_issue14_d2_an_interrupt_stops_the_compiled_fragments_between_chunks(monkeypatch):
-    import scanviz.abuffer.fragment_kernels as fragment_kernels
+    import scanviz.abuffer.fragments_compiled as fragment_kernels
 
     monkeypatch.setattr(fragment_kernels, "CHUNK_POLYGONS", 10)
     firsts, compiled = [], fragment_kernels.chunk_fragments

@@ -20,8 +20,8 @@ from scanviz import render
 from scanviz.pipeline import shade as shade_module
 from scanviz.raster import interpolate
 from scanviz.scene.model import Camera, Light, Material, Mesh, Scene, SceneObject
-from scanviz.shading import kernels as s_kernels
-from scanviz.visibility import kernels as z_kernels
+from scanviz.shading import shade_compiled as s_kernels
+from scanviz.visibility import zbuffer_compiled as z_kernels
 
 BASE = settings.default.max_examples
 THREADS = sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)})

@@ -14,7 +14,7 @@ coverage 1) or a *list*. Inserting a fragment (§6.3.4-6.3.5):
 6.4-6.6), recursing on regions of the pixel (a mask M_Q and its weight Q).
 Both are replaceable steps (`scanviz.steps`): the loop `resolve_reference`
 calls them through the step table and traces what they return.
-`scanviz.abuffer.kernels` is the compiled twin of this module.
+`scanviz.abuffer.pixelstruct_compiled` is the compiled twin of this module.
 """
 
 from __future__ import annotations

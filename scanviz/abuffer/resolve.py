@@ -9,7 +9,7 @@ fragment, the packer collapses each fragment list into a color and a coverage
 (§6.3.6, eqs. 6.4-6.6). ``mode="flawed"`` runs instead the coverage-blending
 z-buffer the thesis opens §6.3 with, which leaves seams between polygons.
 
-Without a tracer the compiled twin (`scanviz.abuffer.kernels`) runs; with one,
+Without a tracer the compiled twin (`scanviz.abuffer.pixelstruct_compiled`) runs; with one,
 or while a step of `scanviz.steps` is replaced, the traced reference
 (`scanviz.abuffer.pixelstruct`). They give the same
 fragment lists and stats, and images equal to 1e-12. See docs/abuffer.md.
@@ -28,7 +28,7 @@ from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..trace import Recorder, Trace
 from ..trace.events import FragmentRecord
-from . import kernels, pixelstruct
+from . import pixelstruct, pixelstruct_compiled
 from .merge import MERGES, merge_by_object
 from .pixelstruct import ABufferStats, FragmentTable
 
@@ -320,7 +320,7 @@ def resolve(
     if merge == "object":
         fragments, object_merged = merge_by_object(fragments, width, height, full)
     if tracer is None and not steps.replaced():  # the kernel has no step table
-        result = kernels.resolve_compiled(
+        result = pixelstruct_compiled.resolve_compiled(
             fragments, width, height, full, cols * rows, weights, background, mode
         )
     else:

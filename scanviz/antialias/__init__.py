@@ -10,7 +10,7 @@ already rendered image (§4.8). See docs/antialiasing.md.
 
 from ..trace.events import DislopColumn, PostColumn
 from .circle import dislop_circle, dislop_disk
-from .edge import dislop_edge
+from .edge_algorithm import dislop_edge
 from .line import dislop_line
 from .post import post_antialias, silhouette_mask
 

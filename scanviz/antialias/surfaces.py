@@ -560,7 +560,7 @@ def smoothed_surface(
 
 def _outline_area(surface, view, pieces, flags, width, height) -> np.ndarray:
     """DISLOP_E's area of the outline: its loops, or (if they do not close) all the triangles."""
-    from .edge import dislop_edge
+    from .edge_algorithm import dislop_edge
 
     if len(pieces) == 0:
         return np.zeros((height, width))

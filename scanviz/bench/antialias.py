@@ -52,7 +52,7 @@ def _dislop(name: str):
         if name == "line":
             from ..antialias.line import dislop_line as function
         elif name == "edge":
-            from ..antialias.edge import dislop_edge as function
+            from ..antialias.edge_algorithm import dislop_edge as function
         else:
             from ..antialias.circle import dislop_disk as function
     except ImportError:

@@ -6,7 +6,7 @@ edges live in their own modules.
 """
 
 from .antialiased import PROGRESS_POLYGONS
-from .edges import PROGRESS_EDGES
+from .feature_lines import PROGRESS_EDGES
 from .prepare import ATTRIBUTES, prepare
 from .render import ANTIALIASED, RELIGHTABLE, SHADINGS, VISIBILITIES, render
 from .result import PixelRecord, RenderPlan, RenderResult, RenderStats, Stage

@@ -41,7 +41,7 @@ def _antialiased(
     fragment. `merge` is `resolve`'s (Carpenter's per-object merge, or none).
     """
     from ..abuffer import MASK_LAYOUTS, Fragments, resolve
-    from ..abuffer.kernels import nearest_fragments
+    from ..abuffer.pixelstruct_compiled import nearest_fragments
 
     polygons, stats = prepared.polygons, prepared.stats
     found = _polygon_fragments(
@@ -99,7 +99,7 @@ def _polygon_fragments(polygons, width, height, mask, subpixel_bits, perspective
     memory limit as it grows; Ctrl-C stops between chunks or polygons
     (KeyboardInterrupt, nothing returned).
     """
-    from ..abuffer.fragment_kernels import FlatFragments, fragment_chunks
+    from ..abuffer.fragments_compiled import FlatFragments, fragment_chunks
 
     parts, stored = [], 0
     per_fragment = FRAGMENT_BYTES + 8 * polygons.value_count + SHADING_BYTES
@@ -123,8 +123,8 @@ def _polygon_fragments(polygons, width, height, mask, subpixel_bits, perspective
 
 def _traced_fragments(polygons, width, height, tracer, options):
     """Yield (1, FlatFragments) polygon by polygon from the reference `polygon_fragments`."""
-    from ..abuffer.fragment_kernels import FlatFragments
     from ..abuffer.fragments import polygon_fragments
+    from ..abuffer.fragments_compiled import FlatFragments
 
     for p in range(polygons.count):
         rows = slice(polygons.offsets[p], polygons.offsets[p + 1])

@@ -37,7 +37,7 @@ from .. import steps
 from ..raster.api import _snap_batch
 from ..scene.model import Scene
 from ..shading.fast_phong import ReflectionModel, fast_phong_triangle
-from ..shading.fast_phong_kernels import fast_phong_triangles
+from ..shading.fast_phong_compiled import fast_phong_triangles
 from ..vectors import unit_vectors
 
 EXPONENT_FLOOR = 1e-6  # the table needs n > 0; a material of exponent 0 has a flat highlight

@@ -16,7 +16,7 @@ from ..transform.clip import ACCEPT, CLIP, REJECT, face_verdicts
 from ..vectors import unit_vectors
 from ..visibility import ScreenPolygons
 from ..visibility.zbuffer import VALUE_LIMIT
-from .prepare_kernels import clip_coordinates, in_range, screen_vertices, within
+from .prepare_compiled import clip_coordinates, in_range, screen_vertices, within
 from .result import RenderStats, Stage
 from .shade import _lit
 

@@ -36,8 +36,8 @@ from ..trace import Recorder
 from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
 from . import shade
 from .antialiased import _antialiased
-from .edges import _draw_feature_edges
 from .fast_shade import fast_phong_image
+from .feature_lines import _draw_feature_edges
 from .prepare import ATTRIBUTES, prepare
 from .result import PixelRecord, RenderPlan, RenderResult, Stage
 from .shade import _exact_materials, _image_function, _trace_illumination

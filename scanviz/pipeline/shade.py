@@ -85,7 +85,7 @@ def _image_function(
 def _phong_image(scene: Scene, polygon: np.ndarray, values: np.ndarray) -> np.ndarray:
     """`_image_function` for Phong without new materials: the compiled model over the buffers."""
     from ..shading.illumination import _light_arrays
-    from ..shading.kernels import shade_image
+    from ..shading.shade_compiled import shade_image
 
     eye, view_dir = _viewer(scene.camera)
     return shade_image(

@@ -20,7 +20,7 @@ from ..conventions import (
 from ..geometry import Polygon, as_coordinates, check_three_distinct, nested_array
 from ..limits import check_memory, current_memory_limit
 from ..trace import Recorder, Trace, Tracer
-from . import kernels
+from . import scan_compiled
 from .fixed import SnappedPolygon, exact_bits, snap, snap_units
 from .scanline import ScanStats, scan_reference
 
@@ -68,7 +68,7 @@ def as_tracer(trace: object) -> Tracer | None:
 
 def paint_spans(spans: np.ndarray, width: int, height: int) -> np.ndarray:
     """The (height, width) bool mask of a (K, 3) span array."""
-    return kernels.paint_mask(np.asarray(spans, dtype=np.int64).reshape(-1, 3), width, height)
+    return scan_compiled.paint_mask(np.asarray(spans, dtype=np.int64).reshape(-1, 3), width, height)
 
 
 def scan_snapped(
@@ -92,7 +92,7 @@ def scan_snapped(
     if trace is not None or not snapped.compilable or steps.replaced():
         return scan_reference(snapped, width, height, rule=rule, arithmetic=arithmetic, trace=trace)
     max_spans = max(current_memory_limit() - reserved, 0) // SPAN_BUFFER_BYTES
-    spans, (edges, kept, rows, max_active), refused = kernels.scan_spans(
+    spans, (edges, kept, rows, max_active), refused = scan_compiled.scan_spans(
         np.array(snapped.units),  # a writable copy: one compiled signature for every caller
         snapped.offsets,
         snapped.scale,
@@ -226,7 +226,7 @@ def _as_polygon(polygon: object, index: int) -> Polygon:
 
 
 def _pack(snapped: list[SnappedPolygon]) -> tuple[np.ndarray, ...]:
-    """Polygons as flat arrays for `kernels.fill_polygons`.
+    """Polygons as flat arrays for `scan_compiled.fill_polygons`.
 
     Returns (units, contour_offsets, polygon_contours, scales): all vertices,
     all contour starts plus the end, and polygon p owning the contours
@@ -305,13 +305,13 @@ def fill_polygons(
     batch = _as_batch(polygons)
     if batch is not None:  # P one-contour polygons: validate at once
         check_memory(_batch_bytes(batch, width, height), what)
-        few = np.flatnonzero(~kernels.three_distinct(batch))
+        few = np.flatnonzero(~scan_compiled.three_distinct(batch))
         if few.size:
             check_three_distinct(batch[few[0]], f"'polygons'[{few[0]}]: contour 0")
         snapped_batch = _snap_batch(batch, sample, bits)
         if snapped_batch is not None:
             (count, size, _), (units, scale) = batch.shape, snapped_batch
-            return kernels.fill_polygons(
+            return scan_compiled.fill_polygons(
                 units.reshape(-1, 2),
                 np.arange(0, count * size + 1, size),
                 np.arange(count + 1),
@@ -329,13 +329,13 @@ def fill_polygons(
     snapped = [snap(_as_polygon(p, i), sample, bits) for i, p in enumerate(items)]
     rasters = 1 + any(not s.compilable for s in snapped)  # the reference's spans get their own
     check_memory(COUNT_BYTES * width * height * rasters + 16 * height, what)
-    image = kernels.fill_polygons(
+    image = scan_compiled.fill_polygons(
         *_pack([s for s in snapped if s.compilable]), width, height, rule == "evenodd"
     )
     # A grid finer than int64 takes needs the reference's Python ints.
     spans = [scan_reference(s, width, height, rule=rule)[0] for s in snapped if not s.compilable]
     if spans:
-        image += kernels.count_spans(np.concatenate(spans), width, height)
+        image += scan_compiled.count_spans(np.concatenate(spans), width, height)
     return image
 
 
@@ -407,9 +407,11 @@ def rasterize_triangles(
     if snapped is None:  # a grid finer than int64 takes: the reference, triangle by triangle
         spans = [
             scan_reference(snap(Polygon(triangle), sample, None), width, height)[0]
-            for triangle in vertices[kernels.three_distinct(vertices)]  # the others have no area
+            for triangle in vertices[
+                scan_compiled.three_distinct(vertices)
+            ]  # the others have no area
         ]
-        return kernels.count_spans(
+        return scan_compiled.count_spans(
             np.concatenate(spans + [np.zeros((0, 3), np.int64)]), width, height
         )
-    return kernels.rasterize_triangles(*snapped, width, height)
+    return scan_compiled.rasterize_triangles(*snapped, width, height)

@@ -26,7 +26,7 @@ The step from one sample of a span to the next is the replaceable step
 value by d(value)/dx.
 
 The formulas (`depth_plane` to `perspective_divide`) are plain Python on
-floats and sequences; the compiled z-buffer (`scanviz.visibility.kernels`)
+floats and sequences; the compiled z-buffer (`scanviz.visibility.zbuffer_compiled`)
 compiles these same functions with numba, so both paths run one definition
 in one order of operations and agree to the bit. Derivations and error
 bounds: docs/interpolation.md.

@@ -24,7 +24,7 @@ numpy floats of that type. Steps 2 and 3 are one walk, `scan_rows`, which
 `scan_reference` and the interpolating walk of the traced z-buffer
 (`scanviz.raster.interpolate.interpolate_rows`) both consume, so a replaced
 step shows in both. This module is the readable reference;
-`scanviz.raster.kernels` is its compiled twin and produces the same spans.
+`scanviz.raster.scan_compiled` is its compiled twin and produces the same spans.
 """
 
 from __future__ import annotations

@@ -336,8 +336,8 @@ def illuminate(
 
 
 def _shade_compiled(positions, normals, materials, eye, view_dir, lights, ambient_light):
-    """`_shade` without steps, by the compiled twin (`scanviz.shading.kernels`): the same bits."""
-    from .kernels import shade_rows
+    """`_shade` without steps, by the compiled twin (`scanviz.shading.shade_compiled`): the same bits."""
+    from .shade_compiled import shade_rows
 
     return shade_rows(
         positions, normals, materials, *_light_arrays(eye, view_dir, lights), ambient_light
@@ -346,7 +346,7 @@ def _shade_compiled(positions, normals, materials, eye, view_dir, lights, ambien
 
 def _light_arrays(eye, view_dir, lights):
     """(eye, toward_viewer, kinds, vectors, colors): the viewer and lights as `shade_rows` takes them."""
-    from .kernels import DIRECTIONAL, POINT
+    from .shade_compiled import DIRECTIONAL, POINT
 
     if eye is not None:
         eye, toward_viewer = _vector("eye", eye), np.full(3, np.nan)

@@ -50,7 +50,7 @@ def _unit3(vector):
     """(unit vector, ok): `vector` scaled by its largest component, then by its length.
 
     Compiled, and called by both the Python functions here and the batch
-    kernel of `scanviz.shading.fast_phong_kernels`, so both get the same bits;
+    kernel of `scanviz.shading.fast_phong_compiled`, so both get the same bits;
     ok is False (and the result zero) for a zero vector.
     """
     unit = np.zeros(3)

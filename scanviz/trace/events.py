@@ -671,7 +671,7 @@ class CoverageBlended(Event):
 
 # --- the list-priority and image-space visibility algorithms (scanviz.visibility) --------
 # Pieces are named by label: the polygon's index, then "a" (in front of) or "b" (behind)
-# per cutting plane, as the slides name 5a and 5b (`scanviz.visibility.surfaces`).
+# per cutting plane, as the slides name 5a and 5b (`scanviz.visibility.screen_polygons`).
 
 
 @dataclass(frozen=True)

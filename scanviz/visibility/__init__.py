@@ -5,7 +5,7 @@ polygons; `render(scene, w, h, visibility=name)` runs it in the pipeline.
 The list-priority algorithms (painter's, depth sort, BSP) decide an order
 of pieces to paint; the image-space ones (scanline, Warnock) the visible
 polygon per sample; all paint with the z-buffer's scan conversion
-(`scanviz.visibility.paint`), so where they decide as the z-buffer does,
+(`scanviz.visibility.draw_decisions`), so where they decide as the z-buffer does,
 the pixels are the z-buffer's to the bit.
 """
 
@@ -13,8 +13,8 @@ from .bsp import BSP, BspStats, BspTree, BspTreeNode
 from .depth_sort import DepthSort, DepthSortStats
 from .interface import ALGORITHMS, Decision, Visibility, VisibilityResult, ZBuffer, algorithm, solve
 from .painter import Painter
-from .scanline import Scanline, ScanlineStats
-from .surfaces import PLANE_TOLERANCE, Cut, Piece, Surfaces
+from .scanline_visibility import Scanline, ScanlineStats
+from .screen_polygons import PLANE_TOLERANCE, Cut, Piece, Surfaces
 from .warnock import Quadtree, Warnock, WarnockStats
 from .zbuffer import ScreenPolygons, ZBufferResult, ZBufferStats, zbuffer
 

@@ -54,7 +54,7 @@ from ..limits import check_memory
 from ..trace.display import RichDisplay
 from ..trace.events import BspCandidate, BspNode, BspVisited, PolygonSplit
 from .interface import Decision, Visibility, piece_record, register
-from .surfaces import BEHIND, FRONT, ON, STRADDLES, Piece, Surfaces
+from .screen_polygons import BEHIND, FRONT, ON, STRADDLES, Piece, Surfaces
 
 ROOTS = ("first", "fewest_splits", "random")
 ORDERS = ("back_to_front", "front_to_back")

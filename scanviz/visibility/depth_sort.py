@@ -68,7 +68,7 @@ from ..trace.display import RichDisplay
 from ..trace.events import AmbiguityTest, PairTested, PiecesSwapped, PolygonSplit, PolygonsSorted
 from .interface import Decision, Visibility, piece_record, register
 from .painter import depth_order
-from .surfaces import STRADDLES, Piece, Surfaces
+from .screen_polygons import STRADDLES, Piece, Surfaces
 
 TESTS = ("x_extent", "y_extent", "s_behind_plane", "other_in_front", "no_overlap")
 REVERSED = {"s_behind_plane": "other_behind_plane", "other_in_front": "s_in_front"}

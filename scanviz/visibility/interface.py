@@ -5,7 +5,7 @@ An algorithm is a small frozen dataclass of its options with a ``name``
 ``decide(surfaces, tracer) -> Decision``: either an order of pieces to
 paint (list priority: painter's, depth sort, BSP) or the visible polygon per
 sample (image space: scanline, Warnock). `solve` runs the decision and
-paints it with the z-buffer's scan conversion (`scanviz.visibility.paint`);
+paints it with the z-buffer's scan conversion (`scanviz.visibility.draw_decisions`);
 the z-buffer itself is the algorithm that decides while it paints.
 
     >>> from scanviz.visibility import ScreenPolygons, solve
@@ -30,8 +30,8 @@ from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..trace import Recorder, Trace
 from ..trace.events import CutRecord, PaintOrder, PieceRecord
-from .paint import paint
-from .surfaces import Piece, Surfaces
+from .draw_decisions import paint
+from .screen_polygons import Piece, Surfaces
 from .zbuffer import ScreenPolygons, ZBufferStats, check_arguments, zbuffer
 
 

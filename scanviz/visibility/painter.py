@@ -23,7 +23,7 @@ from ..conventions import check_choice
 from ..trace.display import RichDisplay
 from ..trace.events import PolygonsSorted
 from .interface import Decision, Visibility, piece_record, register
-from .surfaces import Piece, Surfaces
+from .screen_polygons import Piece, Surfaces
 
 KEYS = ("zmin", "zmax", "centroid")
 

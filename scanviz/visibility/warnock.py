@@ -38,7 +38,7 @@ that meets the area, as the textbook does: the same image, more tests).
 Traced, each area visited emits ``area_classified`` (level, extent, case,
 visible polygon, the polygons meeting it), depth first: lower left, lower
 right, upper left, upper right. The compiled walk
-(`scanviz.visibility.warnock_kernels.subdivide`) visits the same areas.
+(`scanviz.visibility.warnock_compiled.subdivide`) visits the same areas.
 
     >>> from scanviz.trace import Recorder
     >>> from scanviz.visibility import ScreenPolygons, solve
@@ -86,10 +86,10 @@ from ..raster.fixed import SnappedPolygon
 from ..raster.interpolate import plane_depth
 from ..trace.display import RichDisplay
 from ..trace.events import AreaClassified
-from . import warnock_kernels as kernels
+from . import warnock_compiled
 from .interface import Decision, Visibility, register
-from .surfaces import Surfaces
-from .warnock_kernels import AREA_FIELDS, PIXEL, SINGLE, SUBDIVIDE, SURROUNDING, area_case
+from .screen_polygons import Surfaces
+from .warnock_compiled import AREA_FIELDS, PIXEL, SINGLE, SUBDIVIDE, SURROUNDING, area_case
 
 CASES = ("empty", "surrounding", "single", "subdivide", "pixel")  # by code, as `area_case`
 
@@ -164,7 +164,7 @@ def polygon_spans(surfaces: Surfaces) -> tuple[np.ndarray, np.ndarray]:
     would run its kernel); polygons not drawn (edge-on, off the raster) get none.
     """
     if surfaces.units.dtype == np.int64 and not steps.replaced():
-        spans, starts, refused = kernels.polygon_spans(
+        spans, starts, refused = warnock_compiled.polygon_spans(
             surfaces.units, surfaces.polygons.offsets, surfaces.drawn, surfaces.scale,
             surfaces.width, surfaces.height, current_memory_limit() // SPAN_BUFFER_BYTES,
         )  # fmt: skip
@@ -220,8 +220,8 @@ class Warnock(Visibility):
                 8 * (levels * len(candidates) + 2 * len(spans) + surfaces.width * surfaces.height),
                 f"a {surfaces.width}x{surfaces.height} Warnock subdivision of {len(candidates)} polygons",
             )
-            rows = kernels.row_index(spans, span_start, surfaces.height)
-            target, areas, tests = kernels.subdivide(
+            rows = warnock_compiled.row_index(spans, span_start, surfaces.height)
+            target, areas, tests = warnock_compiled.subdivide(
                 spans, rows, surfaces.planes, candidates, surfaces.width, surfaces.height,
                 surfaces.tolerance, bool(self.prune),
             )  # fmt: skip

@@ -8,7 +8,7 @@ values. Ties keep the earlier polygon. Coverage is exactly `scan_convert`'s
 `scanviz.raster.interpolate`. Only the visible fragment's values are kept:
 shading runs afterwards on the final buffers (deferred shading).
 
-Without a tracer the compiled kernel (`scanviz.visibility.kernels`) runs;
+Without a tracer the compiled kernel (`scanviz.visibility.zbuffer_compiled`) runs;
 with one, or while a step of `scanviz.steps` is replaced, the traced
 reference below, which takes its depth test from the step ``depth_test``.
 They give identical depths and ids, and identical values (the same
@@ -44,7 +44,7 @@ from ..raster.interpolate import (
 from ..trace import Recorder, Trace
 from ..trace.display import RichDisplay
 from ..trace.events import DepthTest
-from . import kernels
+from . import zbuffer_compiled
 
 VALUE_LIMIT = 1e100  # bound on |z|, |values| and 1/w (and 1/w >= 1/VALUE_LIMIT): no overflow
 
@@ -244,16 +244,16 @@ class ZBufferStats(RichDisplay):
 
     @classmethod
     def from_counts(cls, counts, polygons: int, path: str) -> ZBufferStats:
-        """The stats of a compiled pass from its (7,) counts (`kernels.ROWS`, ...)."""
+        """The stats of a compiled pass from its (7,) counts (`zbuffer_compiled.ROWS`, ...)."""
         return cls(
             polygons=polygons,
-            polygons_drawn=int(counts[kernels.DRAWN]),
-            polygons_skipped=int(counts[kernels.SKIPPED]),
-            rows_scanned=int(counts[kernels.ROWS]),
-            spans=int(counts[kernels.SPANS]),
-            fragments=int(counts[kernels.FRAGMENTS]),
-            depth_passed=int(counts[kernels.PASSED]),
-            depth_failed=int(counts[kernels.FAILED]),
+            polygons_drawn=int(counts[zbuffer_compiled.DRAWN]),
+            polygons_skipped=int(counts[zbuffer_compiled.SKIPPED]),
+            rows_scanned=int(counts[zbuffer_compiled.ROWS]),
+            spans=int(counts[zbuffer_compiled.SPANS]),
+            fragments=int(counts[zbuffer_compiled.FRAGMENTS]),
+            depth_passed=int(counts[zbuffer_compiled.PASSED]),
+            depth_failed=int(counts[zbuffer_compiled.FAILED]),
             path=path,
         )
 
@@ -372,7 +372,7 @@ def zbuffer(
         scale = 2 ** (bits + 1)
         if polygons.value_count == 0:  # nothing to divide by 1/w: leave it out
             channels = channels[:, :0]
-        depth, ids, values, counts = kernels.zbuffer_polygons(
+        depth, ids, values, counts = zbuffer_compiled.zbuffer_polygons(
             units, units / scale, polygons.z, channels, polygons.offsets, scale,
             width, height, polygons.value_count,
         )  # fmt: skip

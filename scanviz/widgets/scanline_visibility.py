@@ -18,7 +18,7 @@ from matplotlib.patches import Rectangle
 
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
-from ..visibility.scanline import Scanline
+from ..visibility.scanline_visibility import Scanline
 from ._common import WIDEST, fmt, html_table, listed, new_figure, say, status_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors

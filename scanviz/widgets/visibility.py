@@ -103,7 +103,7 @@ TAXONOMY = (
         "sort first: y (sorted surface table), then x (active surfaces); z per span",
         "continuous along a row (exact spans, split where planes cross), point-sampled across",
         "the visible polygon per span",
-        "scanviz.visibility.scanline",
+        "scanviz.visibility.scanline_visibility",
     ),
     Taxon(
         "warnock",

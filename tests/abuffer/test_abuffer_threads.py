@@ -15,12 +15,12 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanviz.abuffer import fragment_kernels, kernels, resolve
+from scanviz.abuffer import fragments_compiled, pixelstruct_compiled, resolve
 from scanviz.pipeline import render
 from scanviz.scene.builtin import builtin_scene
 from scanviz.trace import Recorder
 
-from .test_fragment_kernels import (
+from .test_fragments_compiled import (
     HEIGHT,
     WIDTH,
     assert_identical,
@@ -37,8 +37,8 @@ THREADS = sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)})
 def threaded(run):
     """run() with the threaded paths forced, once per thread count; the results."""
     before = numba.get_num_threads()
-    least = fragment_kernels.PARALLEL_WORK, kernels.PARALLEL_FRAGMENTS
-    fragment_kernels.PARALLEL_WORK = kernels.PARALLEL_FRAGMENTS = 0
+    least = fragments_compiled.PARALLEL_WORK, pixelstruct_compiled.PARALLEL_FRAGMENTS
+    fragments_compiled.PARALLEL_WORK = pixelstruct_compiled.PARALLEL_FRAGMENTS = 0
     try:
         results = []
         for threads in THREADS:
@@ -47,7 +47,7 @@ def threaded(run):
         return results
     finally:
         numba.set_num_threads(before)
-        fragment_kernels.PARALLEL_WORK, kernels.PARALLEL_FRAGMENTS = least
+        fragments_compiled.PARALLEL_WORK, pixelstruct_compiled.PARALLEL_FRAGMENTS = least
 
 
 @settings(max_examples=25, derandomize=True, deadline=None)
@@ -83,8 +83,8 @@ def test_threaded_render_is_the_one_thread_render(monkeypatch):
     """A terrain render: image, depth, ids and fragment lists equal with 1 and 2 threads."""
     scene = builtin_scene("terrain", n=12)
     options = {"visibility": "abuffer", "shading": "phong", "mask": "8x8"}
-    monkeypatch.setattr(fragment_kernels, "PARALLEL_WORK", 2**62)  # the one-thread twins
-    monkeypatch.setattr(kernels, "PARALLEL_FRAGMENTS", 2**62)
+    monkeypatch.setattr(fragments_compiled, "PARALLEL_WORK", 2**62)  # the one-thread twins
+    monkeypatch.setattr(pixelstruct_compiled, "PARALLEL_FRAGMENTS", 2**62)
     serial = render(scene, 24, 24, **options)
     for fast in threaded(lambda: render(scene, 24, 24, **options)):
         assert np.array_equal(fast.image, serial.image)

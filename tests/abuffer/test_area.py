@@ -272,7 +272,7 @@ def test_issue14_d3_degenerate_sweeps_match_exact_fractions(contours, rule):
 @settings(max_examples=settings.default.max_examples // 4)
 @given(many_vertex_polygons(8, 6), st.integers(0, 5))
 def test_a_rows_areas_depend_only_on_the_edges_reaching_it(polygon, y):
-    # `antialias.edge` runs the kernel on one pixel's row with just those edges.
+    # `antialias.edge_algorithm` runs the kernel on one pixel's row with just those edges.
     edges = area._edge_arrays(area.snapped_vertices(polygon, 8), polygon.offsets)
     rows, _ = area._coverage_kernel(*edges, 8, 6, False, 0, 6, 2**62)
     reach = (edges[1] < y + 1) & (edges[3] > y)

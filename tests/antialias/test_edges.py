@@ -7,8 +7,8 @@ import pytest
 
 from scanviz import render
 from scanviz.antialias import dislop_line
-from scanviz.antialias.edges import antialiased_edges, feature_edge_segments
-from scanviz.pipeline.edges import feature_edge_runs
+from scanviz.antialias.post_edges import antialiased_edges, feature_edge_segments
+from scanviz.pipeline.feature_lines import feature_edge_runs
 from scanviz.scene.builtin import builtin_scene
 
 

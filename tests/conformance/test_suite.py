@@ -6,7 +6,7 @@ import pytest
 import scanviz.conformance as conformance
 from scanviz.catalog import SHAPES
 from scanviz.conformance import exact, suite
-from scanviz.raster import kernels
+from scanviz.raster import scan_compiled
 from tests import oracle
 
 
@@ -17,7 +17,7 @@ def test_category_passes(name):
 
 
 def test_a_kernel_that_drops_a_sample_fails_watertight_fans(monkeypatch):
-    compiled = kernels.rasterize_triangles
+    compiled = scan_compiled.rasterize_triangles
 
     def drops_one_sample(*args):
         counts = compiled(*args).copy()
@@ -26,21 +26,21 @@ def test_a_kernel_that_drops_a_sample_fails_watertight_fans(monkeypatch):
             counts[tuple(covered[len(covered) // 2])] -= 1
         return counts
 
-    monkeypatch.setattr(kernels, "rasterize_triangles", drops_one_sample)
+    monkeypatch.setattr(scan_compiled, "rasterize_triangles", drops_one_sample)
     outcome = suite.run_category("watertight fans", seed=0)
     assert not outcome.passed
     assert outcome.failure.startswith("rasterize_triangles sample=corner fan of")
 
 
 def test_a_kernel_that_owns_the_right_edge_fails_the_fill_convention(monkeypatch):
-    compiled = kernels.paint_mask
+    compiled = scan_compiled.paint_mask
 
     def paints_one_more(spans, width, height):
         wider = spans.copy()
         wider[:, 2] = np.minimum(wider[:, 2] + 1, width)
         return compiled(wider, width, height)
 
-    monkeypatch.setattr(kernels, "paint_mask", paints_one_more)
+    monkeypatch.setattr(scan_compiled, "paint_mask", paints_one_more)
     outcome = suite.run_category("fill convention", seed=0)
     assert not outcome.passed and "scan_convert" in outcome.failure
 

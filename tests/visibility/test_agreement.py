@@ -30,7 +30,7 @@ from scanviz.visibility import (
     solve,
     zbuffer,
 )
-from scanviz.visibility.paint import paint
+from scanviz.visibility.draw_decisions import paint
 from tests.visibility.support import assert_agrees, random_scene, unique_nearest
 
 EXAMPLES = max(settings.default.max_examples // 5, 1)  # SCANVIZ_MAX_EXAMPLES scales these too

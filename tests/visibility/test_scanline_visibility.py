@@ -9,7 +9,7 @@ from scanviz import render
 from scanviz.io import load_scene
 from scanviz.trace import Recorder, Trace
 from scanviz.visibility import ScreenPolygons, Surfaces, examples, solve, zbuffer
-from scanviz.visibility.scanline import Scanline, ScanlineStats
+from scanviz.visibility.scanline_visibility import Scanline, ScanlineStats
 from tests.visibility.support import assert_agrees, polygon_depths, random_scene
 
 SIZE = 24

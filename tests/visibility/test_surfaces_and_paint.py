@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scanviz.visibility import Piece, ScreenPolygons, Surfaces, zbuffer
-from scanviz.visibility.paint import fill, paint
+from scanviz.visibility.draw_decisions import fill, paint
 from tests.visibility.support import polygon_depths, random_scene
 
 W, H = 24, 20

@@ -13,8 +13,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanviz.visibility import ScreenPolygons, kernels, zbuffer
-from scanviz.visibility.kernels import BAND_ROWS
+from scanviz.visibility import ScreenPolygons, zbuffer, zbuffer_compiled
+from scanviz.visibility.zbuffer_compiled import BAND_ROWS
 
 BASE = settings.default.max_examples
 WIDTH, HEIGHT = 23, 5 * BAND_ROWS + 3  # five whole bands and a partial one
@@ -42,8 +42,8 @@ def soups(draw):
 def test_banded_equals_reference_with_any_thread_count(polygons, perspective, bits):
     options = dict(perspective=perspective, subpixel_bits=bits)
     reference = zbuffer(polygons, WIDTH, HEIGHT, trace=True, **options)
-    before, least = numba.get_num_threads(), kernels.PARALLEL_WORK
-    kernels.PARALLEL_WORK = 0  # the bands go to the threads however small the raster
+    before, least = numba.get_num_threads(), zbuffer_compiled.PARALLEL_WORK
+    zbuffer_compiled.PARALLEL_WORK = 0  # the bands go to the threads however small the raster
     try:
         for threads in THREADS:
             numba.set_num_threads(threads)
@@ -55,7 +55,7 @@ def test_banded_equals_reference_with_any_thread_count(polygons, perspective, bi
             assert {**vars(compiled.stats), "path": ""} == {**vars(reference.stats), "path": ""}
     finally:
         numba.set_num_threads(before)
-        kernels.PARALLEL_WORK = least
+        zbuffer_compiled.PARALLEL_WORK = least
 
 
 def test_a_polygon_across_every_band_and_beyond_the_raster():

@@ -27,7 +27,7 @@ from ..abuffer.area import MAX_WORK, _coverage_kernel, area_coverage
 from ..conventions import COORD_LIMIT
 from ..geometry import Polygon
 from ..raster import scan_convert
-from ..raster.kernels import has_three_distinct
+from ..raster.scan_compiled import has_three_distinct
 from ..trace.events import DislopColumn
 from . import columns
 from ._inputs import as_tracer, finish, new_raster

@@ -6,7 +6,7 @@ run of polygons in two compiled passes (shared among numba's threads), into
 flat arrays in drawing order, each polygon's fragments sorted by y then x,
 equal to the reference's:
 
-* masks: the scan converter's own compiled kernel (`raster.kernels.scan_polygon`)
+* masks: the scan converter's own compiled kernel (`raster.scan_compiled.scan_polygon`)
   on the polygon snapped and scaled by (cols, rows), as `masks.pixel_masks`
   runs it; its sub-sample spans are cut at pixel borders into the bits
   `masks._gather_spans` makes;
@@ -39,7 +39,7 @@ from ..conventions import MAX_SUBPIXEL_BITS
 from ..limits import check_memory
 from ..raster import interpolate
 from ..raster.fixed import exact_bits_compiled
-from ..raster.kernels import has_three_distinct, scan_polygon
+from ..raster.scan_compiled import has_three_distinct, scan_polygon
 from ..threads import use_threads
 from .area import MAX_WORK, _coverage_kernel
 

@@ -14,7 +14,7 @@ the pixel is the same to the bit. Three modes:
   is visible (the image-space algorithms: scanline, Warnock).
 
 Traced, each sample emits `pixel_painted`; untraced, the compiled kernel
-(`scanviz.visibility.kernels.paint_pieces`) gives the same buffers.
+(`scanviz.visibility.zbuffer_compiled.paint_pieces`) gives the same buffers.
 """
 
 from __future__ import annotations
@@ -28,12 +28,16 @@ from ..raster.api import as_tracer
 from ..raster.fixed import SnappedPolygon
 from ..raster.interpolate import interpolate_rows, polygon_plane
 from ..trace.events import PixelPainted
-from . import kernels
-from .surfaces import Piece, Surfaces
+from . import zbuffer_compiled
+from .screen_polygons import Piece, Surfaces
 from .zbuffer import ZBufferStats, _attributes
 
 MODES = ("over", "under", "target")
-_KERNEL_MODE = {"over": kernels.OVER, "under": kernels.UNDER, "target": kernels.TARGET}
+_KERNEL_MODE = {
+    "over": zbuffer_compiled.OVER,
+    "under": zbuffer_compiled.UNDER,
+    "target": zbuffer_compiled.TARGET,
+}
 
 
 @dataclass(frozen=True)
@@ -76,7 +80,7 @@ def _paint_compiled(surfaces, pieces, mode, target) -> Painted:
     starts = np.concatenate([[0], np.cumsum([len(r) for r in cut_rows])]).astype(np.int64)
     rows = np.concatenate([np.zeros((0, 11)), *cut_rows])
     polygons = surfaces.polygons
-    depth, ids, values, counts = kernels.paint_pieces(
+    depth, ids, values, counts = zbuffer_compiled.paint_pieces(
         surfaces.units, surfaces.units / surfaces.scale, polygons.z, surfaces.channels,
         polygons.offsets, surfaces.scale, surfaces.width, surfaces.height, polygons.value_count,
         np.array([piece.polygon for piece in pieces], np.int64), starts, rows,
@@ -91,7 +95,7 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
     depth = np.full((height, width), np.inf)
     ids = np.full((height, width), -1, np.int64)
     values = np.zeros((height, width, polygons.value_count))
-    counts = np.zeros(kernels.STAT_FIELDS, np.int64)
+    counts = np.zeros(zbuffer_compiled.STAT_FIELDS, np.int64)
     for piece in pieces:
         p = piece.polygon
         first, stop = polygons.offsets[p], polygons.offsets[p + 1]
@@ -100,9 +104,9 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
         )
         plane = polygon_plane(snapped, polygons.z[first:stop])
         if not surfaces.drawn[p]:
-            counts[kernels.SKIPPED] += 1
+            counts[zbuffer_compiled.SKIPPED] += 1
             continue
-        fragments = counts[kernels.FRAGMENTS]
+        fragments = counts[zbuffer_compiled.FRAGMENTS]
         y_low, y_high = piece.rows()
         for y, spans in interpolate_rows(
             snapped, plane, surfaces.channels[first:stop], width, height
@@ -111,8 +115,8 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
                 break
             if y < y_low:
                 continue
-            counts[kernels.ROWS] += 1
-            counts[kernels.SPANS] += len(spans)
+            counts[zbuffer_compiled.ROWS] += 1
+            counts[zbuffer_compiled.SPANS] += len(spans)
             traced = trace is not None and trace.wants("pixel_painted", polygon=p, y=y)
             for span in spans:
                 for x, z, channel_values in span.samples():
@@ -129,9 +133,9 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
                     if write:
                         depth[y, x], ids[y, x] = z, p
                         values[y, x] = _attributes(channel_values, surfaces.perspective)
-                    counts[kernels.FRAGMENTS] += 1
-                    counts[kernels.PASSED if write else kernels.FAILED] += 1
-        counts[kernels.DRAWN] += counts[kernels.FRAGMENTS] > fragments
+                    counts[zbuffer_compiled.FRAGMENTS] += 1
+                    counts[zbuffer_compiled.PASSED if write else zbuffer_compiled.FAILED] += 1
+        counts[zbuffer_compiled.DRAWN] += counts[zbuffer_compiled.FRAGMENTS] > fragments
     return Painted(
         depth, ids, values, ZBufferStats.from_counts(counts, len(pieces), "traced reference")
     )

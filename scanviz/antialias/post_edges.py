@@ -2,7 +2,7 @@
 
 `render(scene, w, h, edges=True)` paints each silhouette, boundary and crease
 edge as a black midpoint line where the z-buffer shows it
-(`scanviz.pipeline.edges.feature_edge_runs`). `feature_edge_segments` turns
+(`scanviz.pipeline.feature_lines.feature_edge_runs`). `feature_edge_segments` turns
 those depth-tested pixels back into segments, one per run of shown pixels,
 with the edge's own sub-pixel ends; `antialiased_edges` blends them over the
 rendered image with the line table of §4.8 (`post_antialias`) or DISLOP_L
@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..conventions import check_choice
-from ..pipeline.edges import feature_edge_runs
+from ..pipeline.feature_lines import feature_edge_runs
 from ..scene.model import Scene
 from .line import dislop_line
 from .post import post_antialias

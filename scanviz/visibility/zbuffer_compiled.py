@@ -1,7 +1,7 @@
 """Compiled twin of the traced z-buffer (numba): the reference's depths, ids and values, fast.
 
 `zbuffer_polygons` draws all polygons in one call, with the edge table and
-exact crossings of `scanviz.raster.kernels` and the interpolation formulas of
+exact crossings of `scanviz.raster.scan_compiled` and the interpolation formulas of
 `scanviz.raster.interpolate`, compiled from the same source (one definition,
 one order of operations, so the same bits as the reference).
 
@@ -22,7 +22,7 @@ from numba import njit, prange
 
 from .. import buffers
 from ..raster import interpolate as formulas
-from ..raster.kernels import (
+from ..raster.scan_compiled import (
     CEIL,
     DEN,
     LOWER,
@@ -61,7 +61,7 @@ STAT_FIELDS = 7
 # under (front to back: only empty samples), or write where the decided id is this polygon.
 DEPTH, OVER, UNDER, TARGET = range(4)
 WHOLE = 2**62  # rows -WHOLE..WHOLE: a whole polygon, no row left out
-TABLE_FIELDS = 9  # rows of an edge table (`scanviz.raster.kernels.edge_table`)
+TABLE_FIELDS = 9  # rows of an edge table (`scanviz.raster.scan_compiled.edge_table`)
 SORTED_IN_PLACE = 64  # polygons up to this many edges sort their edge table by insertion
 BAND_ROWS = 16  # sample rows per band of the parallel z-buffer (its unit of work)
 PARALLEL_WORK = 2**16  # polygons listed in bands plus pixels: below this, one thread draws
@@ -127,7 +127,7 @@ def start_edge(table, e, channels, scale, y, edge_value, edge_dvdy):
 
 @njit(cache=True, inline="always")
 def keeps(cuts, x, y):
-    """Whether sample (x, y) is on the kept side of every cut of a piece (`scanviz.visibility.surfaces`).
+    """Whether sample (x, y) is on the kept side of every cut of a piece (`scanviz.visibility.screen_polygons`).
 
     A cut row is the piece's plane, the cutting polygon's plane (five numbers
     each, as `plane_depth` takes them) and 1.0 to keep the samples behind that

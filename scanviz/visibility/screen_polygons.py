@@ -34,7 +34,7 @@ import numpy as np
 
 from ..raster.fixed import exact_bits, snap_units
 from ..raster.interpolate import depth_plane, plane_depth, reaches_raster, vertex_channels
-from . import kernels
+from . import zbuffer_compiled
 from .zbuffer import ScreenPolygons
 
 PLANE_TOLERANCE = 1e-9  # relative to the scene's depth magnitude (at least 1)
@@ -79,7 +79,10 @@ class Piece:
         extent is widened by a row each way; the cuts decide each sample.
         """
         if not self.cuts or not len(self.vertices):
-            return -kernels.WHOLE, kernels.WHOLE  # an empty clip leaves it to the cuts
+            return (
+                -zbuffer_compiled.WHOLE,
+                zbuffer_compiled.WHOLE,
+            )  # an empty clip leaves it to the cuts
         ys = self.vertices[:, 1]
         return int(np.floor(ys.min())) - 1, int(np.ceil(ys.max())) + 2
 
@@ -131,7 +134,7 @@ class Surfaces:
         scale = 2 ** (bits + 1)
         if units.dtype == np.int64:  # exact: every unit is below 2**53
             positions = units / scale
-            planes, normals, drawn = kernels.polygon_planes(
+            planes, normals, drawn = zbuffer_compiled.polygon_planes(
                 units, positions, polygons.z, polygons.offsets, scale, width, height
             )
         else:
@@ -219,7 +222,7 @@ class Surfaces:
         return front, back
 
     def cut_rows(self, piece: Piece) -> np.ndarray:
-        """(k, 11) rows of `piece`'s cuts for the compiled painter (`kernels.keeps`)."""
+        """(k, 11) rows of `piece`'s cuts for the compiled painter (`zbuffer_compiled.keeps`)."""
         rows = np.zeros((len(piece.cuts), 11))
         for i, cut in enumerate(piece.cuts):
             rows[i, :5], rows[i, 5:10] = self.planes[piece.polygon], self.planes[cut.other]
@@ -237,7 +240,7 @@ class Surfaces:
 
 
 def _exact_planes(polygons, units, scale, width, height):
-    """`kernels.polygon_planes` for units beyond int64 (subpixel_bits=None), in Python."""
+    """`zbuffer_compiled.polygon_planes` for units beyond int64 (subpixel_bits=None), in Python."""
     positions = np.array([[int(u) / scale for u in row] for row in units]).reshape(-1, 2)
     count = polygons.count
     planes, normals, drawn = np.zeros((count, 5)), np.zeros((count, 3)), np.zeros(count, bool)

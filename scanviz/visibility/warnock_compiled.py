@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from ..raster.interpolate import plane_depth as _plane_depth
-from ..raster.kernels import scan_spans
+from ..raster.scan_compiled import scan_spans
 
 # Cases of an area, in the order of the tests (`CASES` names them).
 EMPTY, SURROUNDING, SINGLE, SUBDIVIDE, PIXEL = range(5)

@@ -60,7 +60,7 @@ class EdgeRun:
 def feature_edge_runs(scene: Scene, depth, width: int, height: int) -> Iterator[EdgeRun]:
     """Every object's silhouette, boundary and crease edge with its depth-tested pixels.
 
-    `render(edges=True)` paints the shown pixels black; `scanviz.antialias.edges`
+    `render(edges=True)` paints the shown pixels black; `scanviz.antialias.post_edges`
     post-anti-aliases the shown runs instead. Edges with an end behind the eye
     plane, or beyond +-2**20 pixels, are left out.
     """

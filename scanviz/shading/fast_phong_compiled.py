@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..raster.kernels import ceil_div, exact_crossing, exact_step
+from ..raster.scan_compiled import ceil_div, exact_crossing, exact_step
 from .lut import lut_level_compiled
 from .taylor import LEVELS, _forms, _halfway, _plane, _unit3, phi_series, theta_series
 

@@ -49,9 +49,9 @@ from ..raster.fixed import SnappedPolygon
 from ..raster.scanline import bucketed_edge_table
 from ..trace.display import RichDisplay
 from ..trace.events import ActiveSurfaces, SurfaceRecord, SurfaceTableBuilt, VisibleSpan
-from . import scanline_kernels as kernels
+from . import scanline_compiled
 from .interface import Decision, Visibility, register
-from .surfaces import Surfaces
+from .screen_polygons import Surfaces
 
 
 @dataclass
@@ -109,7 +109,7 @@ class Scanline(Visibility):
     def decide(self, surfaces: Surfaces, tracer) -> Decision:
         # As painting: a replaced step (the edge table's) runs in the reference only.
         if tracer is None and surfaces.units.dtype == np.int64 and not steps.replaced():
-            ids, counts, y_start, y_end = kernels.scanline_ids(
+            ids, counts, y_start, y_end = scanline_compiled.scanline_ids(
                 surfaces.units, surfaces.polygons.offsets, surfaces.drawn, surfaces.planes,
                 surfaces.scale, surfaces.width, surfaces.height, bool(self.coherence),
             )  # fmt: skip
@@ -202,17 +202,19 @@ def certificate(surfaces: Surfaces, over, w: int, start: int, end: int, y: int):
     slack, rate = np.inf, 0.0
     for s in over:
         if s != w:
-            pair = kernels.pair_slack(
+            pair = scanline_compiled.pair_slack(
                 near[0], near[1], surfaces.depth(s, start, y), surfaces.depth(s, last, y),
                 error[0] + _error(surfaces, s, start, y), error[1] + _error(surfaces, s, last, y),
             )  # fmt: skip
             slack = min(slack, pair)
-            rate = max(rate, kernels.pair_rate(surfaces.planes[w, 4], surfaces.planes[s, 4]))
+            rate = max(
+                rate, scanline_compiled.pair_rate(surfaces.planes[w, 4], surfaces.planes[s, 4])
+            )
     return slack, rate
 
 
 def _error(surfaces: Surfaces, p: int, x: int, y: int) -> float:
-    return kernels.depth_error(*surfaces.planes[p], x, y)
+    return scanline_compiled.depth_error(*surfaces.planes[p], x, y)
 
 
 @dataclass
@@ -287,7 +289,7 @@ def _span(surfaces, ids, stats, y, start, end, over, below, coherence, tracer):
     if (
         earlier is not None
         and earlier.over == over
-        and kernels.still_certain(earlier.slack, earlier.rate, y - earlier.row)
+        and scanline_compiled.still_certain(earlier.slack, earlier.rate, y - earlier.row)
     ):
         stats.spans_reused += 1
         ids[y, start:end] = earlier.visible
@@ -302,7 +304,7 @@ def _span(surfaces, ids, stats, y, start, end, over, below, coherence, tracer):
         _emit_span(surfaces, tracer, y, run_start, run_end, over, visible, False, split_at)
     if coherence:
         slack, rate = certificate(surfaces, over, runs[0][2], start, end, y)
-        if kernels.still_certain(slack, rate, 1):  # the row above may reuse it
+        if scanline_compiled.still_certain(slack, rate, 1):  # the row above may reuse it
             return _Decided(over, runs[0][2], y, slack, rate)
     return None
 

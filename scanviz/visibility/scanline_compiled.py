@@ -4,7 +4,7 @@
 table of all drawn polygons (the z-buffer's `edge_table` per polygon, merged by
 first row), one active edge table of exact crossings sorted by ceil(x), so each
 polygon covers on each row exactly the samples the z-buffer's scan conversion
-gives it (`scanviz.raster.kernels` explains why any order by ceiling gives the
+gives it (`scanviz.raster.scan_compiled` explains why any order by ceiling gives the
 same runs). The row's spans run between consecutive distinct crossing ceilings.
 
 A span's visible surface is the one of least (z, index) at each sample, z from
@@ -34,8 +34,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..raster.kernels import CEIL, ROW_END, ROW_START, WINDING, activate, edge_table
-from .kernels import move_entry, plane_depth, retire_edges
+from ..raster.scan_compiled import CEIL, ROW_END, ROW_START, WINDING, activate, edge_table
+from .zbuffer_compiled import move_entry, plane_depth, retire_edges
 
 ROUNDING = 16 * 2.0**-53  # 4 unit roundings for plane_depth's 4 operations, times a margin of 4
 SAFETY = 2.0**-50  # relative margin for the two roundings of `still_certain`

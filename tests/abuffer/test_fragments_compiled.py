@@ -9,9 +9,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scanviz import steps
-from scanviz.abuffer import Fragments, fragment_kernels, pixelstruct, resolve
-from scanviz.abuffer.fragment_kernels import FlatFragments, fragment_chunks
+from scanviz.abuffer import Fragments, fragments_compiled, pixelstruct, resolve
 from scanviz.abuffer.fragments import polygon_fragments
+from scanviz.abuffer.fragments_compiled import FlatFragments, fragment_chunks
 from scanviz.abuffer.merge import merge_by_object
 from scanviz.pipeline import render
 from scanviz.scene.builtin import builtin_scene
@@ -115,7 +115,7 @@ def test_chunks_and_reference_polygons_splice_in_drawing_order(monkeypatch):
     polygons = [rng.uniform(-2, 10, (rng.integers(3, 7), 2)) for _ in range(11)]
     polygons[::2] = [np.round(p * 16) / 16 for p in polygons[::2]]
     table = screen_polygons(polygons, 4, rng)
-    monkeypatch.setattr(fragment_kernels, "CHUNK_POLYGONS", 2)
+    monkeypatch.setattr(fragments_compiled, "CHUNK_POLYGONS", 2)
     options = {"mask": "8x8", "subpixel_bits": None, "perspective": True}
     done = [count for count, _ in fragment_chunks(table, WIDTH, HEIGHT, **options)]
     assert done == [2, 2, 2, 2, 2, 1]

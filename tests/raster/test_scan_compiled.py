@@ -13,10 +13,10 @@ from hypothesis import strategies as st
 from scanviz import Polygon, fill_polygons, rasterize_triangles, scan_convert
 from scanviz.catalog import SHAPES
 from scanviz.conventions import ARITHMETICS, COORD_LIMIT, RULES, SAMPLE_MODES
-from scanviz.raster import kernels
+from scanviz.raster import scan_compiled
 from scanviz.raster.api import scan_snapped
 from scanviz.raster.fixed import snap
-from scanviz.raster.kernels import mul_divmod
+from scanviz.raster.scan_compiled import mul_divmod
 from scanviz.raster.scanline import scan_reference
 
 MANY = settings(max_examples=10 * settings.default.max_examples)
@@ -410,4 +410,4 @@ def test_issue8_d9_shapes_and_items_are_checked():
 def test_three_distinct_counts_as_unique(values, size):
     batch = np.array(values).reshape(4, 5, 2)[:, :size].copy()
     expected = [len(np.unique(item, axis=0)) >= 3 for item in batch]
-    assert kernels.three_distinct(batch).tolist() == expected
+    assert scan_compiled.three_distinct(batch).tolist() == expected
