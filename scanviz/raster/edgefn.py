@@ -40,7 +40,7 @@ from ..conventions import (
 from ..geometry import Polygon, as_coordinates
 from ..limits import check_memory
 from ..trace import Recorder, Trace
-from ..trace.events import EdgeFunctionRecord, EdgeFunctionRow, TriangleSetup
+from ..trace.events import EdgeFunction, EdgeFunctionRow, TriangleSetup
 from .api import as_tracer
 from .fixed import snap
 
@@ -67,19 +67,6 @@ class TriangleSamples:
     xs: np.ndarray
     barycentric: np.ndarray
     trace: Trace | None
-
-
-@dataclass(frozen=True)
-class EdgeFunction:
-    """E(p) = a * px + b * py + c on the grid, and whether E = 0 counts as inside."""
-
-    a: int
-    b: int
-    c: int
-    owns_boundary: bool
-
-    def at(self, px: int, py: int) -> int:
-        return self.a * px + self.b * py + self.c
 
 
 @steps.step(
@@ -382,9 +369,7 @@ def _setup_event(snapped, units, edges, area2, orientation, bbox, polygon) -> Tr
         ),
         units=tuple(units),
         scale=snapped.scale,
-        edges=tuple(
-            EdgeFunctionRecord(i, e.a, e.b, e.c, e.owns_boundary) for i, e in enumerate(edges)
-        ),
+        edges=tuple(edges),
         area2=area2,
         orientation=orientation,
         bbox=bbox,

@@ -25,7 +25,7 @@ measured error.
 from __future__ import annotations
 
 import numbers
-from dataclasses import astuple, dataclass
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
@@ -37,7 +37,7 @@ from ..raster import triangle_samples
 from ..raster.api import as_tracer
 from ..raster.fixed import snap
 from ..trace import Recorder, Trace
-from ..trace.events import FastPhongPixel, FastPhongSetup, RationalFormsRecord
+from ..trace.events import FastPhongPixel, FastPhongSetup
 from ..vectors import unit_vectors
 from .illumination import _vector
 from .lut import level_comparisons, lut_level_compiled
@@ -334,7 +334,7 @@ def _setup_event(setup, model, expansion, quadratics, polygon) -> FastPhongSetup
         to_light=_floats(setup.to_light),
         to_viewer=_floats(setup.to_viewer),
         halfway=halfway,
-        forms=RationalFormsRecord(*astuple(setup.forms)),
+        forms=setup.forms,
         specular=model.specular,
         cos_theta=_floats(quadratics[COS_THETA]),
         cos_specular=_floats(quadratics[COS_SPECULAR]),

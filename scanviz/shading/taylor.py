@@ -20,6 +20,7 @@ from numba import njit
 
 from ..conventions import check_choice, check_finite, finite_real
 from ..geometry import as_coordinates
+from ..trace.events import RationalForms  # the trace's record is the domain record
 from .illumination import _vector
 from .lut import specular_lut
 
@@ -234,60 +235,6 @@ def _plane(vertices, normals, origin):
         b[k] = (nu * (xw - xv) + nw * xv - nv * xw) / determinant
         c[k] = nu + a[k] * (origin[0] - xu) + b[k] * (origin[1] - yu)
     return a, b, c, True
-
-
-@dataclass(frozen=True)
-class RationalForms:
-    """cos θ, cos φ and N̂·Ĥ over a triangle as exact rational functions of (x, y) (§2.3).
-
-    Built by `rational_forms`; the fields are the dissertation's scalars
-    (see `scanviz.trace.events.RationalFormsRecord`), with |N|² =
-    d x² + e xy + f y² + g x + h y + i.
-    """
-
-    a: float
-    b: float
-    c: float
-    aa: float
-    bb: float
-    cc: float
-    d: float
-    e: float
-    f: float
-    g: float
-    h: float
-    i: float
-    l: float  # noqa: E741 -- the dissertation's name
-    m: float
-    o: float
-    p: float
-    q: float
-    w: float
-    k_lv: float
-    ha: float
-    hb: float
-    hc: float
-
-    def norm_squared(self, x: object, y: object) -> np.ndarray:
-        """|N(x, y)|² = d x² + e xy + f y² + g x + h y + i."""
-        x, y = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
-        return self.d * x * x + self.e * x * y + self.f * y * y + self.g * x + self.h * y + self.i
-
-    def cos_theta(self, x: object, y: object) -> np.ndarray:
-        """cos θ = (a x + b y + c) / sqrt(|N|²)."""
-        x, y = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
-        return (self.a * x + self.b * y + self.c) / np.sqrt(self.norm_squared(x, y))
-
-    def cos_phi(self, x: object, y: object) -> np.ndarray:
-        """cos φ = R̂·V̂ = (l x² + m xy + o y² + p x + q y + w) / |N|² - k_LV."""
-        x, y = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
-        numerator = self.l * x * x + self.m * x * y + self.o * y * y + self.p * x + self.q * y
-        return (numerator + self.w) / self.norm_squared(x, y) - self.k_lv
-
-    def n_dot_h(self, x: object, y: object) -> np.ndarray:
-        """N̂·Ĥ = (ha x + hb y + hc) / sqrt(|N|²): cos θ with H in place of L."""
-        x, y = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
-        return (self.ha * x + self.hb * y + self.hc) / np.sqrt(self.norm_squared(x, y))
 
 
 def halfway_vector(to_light: object, to_viewer: object) -> np.ndarray:

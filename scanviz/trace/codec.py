@@ -1,4 +1,4 @@
-"""JSON form of a trace: ``{"events": [{"kind": ..., field: value, ...}, ...]}``.
+"""JSON form of a trace: ``{"version": 2, "events": [{"kind": ..., field: value, ...}, ...]}``.
 
 Values map as: int, bool, str and None as themselves; finite floats as JSON
 numbers with every bit kept (`repr`), non-finite ones as the strings
@@ -9,7 +9,13 @@ records as objects. Reading is driven by each event class's annotations
 exactly, and malformed text raises a ValueError naming the JSON path and
 the rule, before anything large is built: text over the file limit, or
 nested deeper than `MAX_DEPTH`, or holding a number of more than `DIGITS`
-digits, is refused unparsed.
+digits, is refused unparsed. Reading is also where an event's field types
+are checked (events built in Python check nothing).
+
+`FORMAT_VERSION` is written; every version in `READABLE` is read, each to
+today's event classes. Version 1 (before issue 24) had no ``"version"`` key,
+and each edge of a ``triangle_setup`` carried its index ``"edge"``, which
+today is its place in ``edges`` (`_from_version_1` drops it, checking it).
 """
 
 from __future__ import annotations
@@ -36,6 +42,13 @@ from .schema import DIGITS, Invalid, Nested, shown
 
 if typing.TYPE_CHECKING:
     from .recorder import Trace
+
+FORMAT_VERSION = 2
+"""The version `trace_to_json` writes: 2 added the ``"version"`` key; its events carry the
+stages' own records (a triangle's edges are `EdgeFunction`s, without an index)."""
+
+READABLE = (1, 2)
+"""The versions `trace_from_json` reads; a file without ``"version"`` is version 1."""
 
 _EVENT_NODES = {kind: Nested(cls) for kind, cls in EVENT_TYPES.items()}
 MAX_DEPTH = 2 + max(node.depth for node in _EVENT_NODES.values())
@@ -67,7 +80,8 @@ def encode(value: object) -> object:
 
 def trace_to_json(trace: typing.Iterable[Event], **dumps_options: object) -> str:
     """The JSON text of a sequence of events; `dumps_options` go to `json.dumps`."""
-    return json.dumps({"events": [encode(e) for e in trace]}, **dumps_options)  # type: ignore[arg-type]
+    data = {"version": FORMAT_VERSION, "events": [encode(e) for e in trace]}
+    return json.dumps(data, **dumps_options)  # type: ignore[arg-type]
 
 
 def _close_kind(kind: str) -> str:
@@ -75,8 +89,29 @@ def _close_kind(kind: str) -> str:
     return f" (did you mean {close[0]!r}?)" if close else ""
 
 
-def event_from_dict(data: object) -> Event:
-    """The event of one decoded JSON object; raises `schema.Invalid` with the path inside it."""
+def _from_version_1(data: dict) -> dict:
+    """A version-1 event object in today's shape: a triangle's edges lose their index ``edge``."""
+    edges = data.get("edges")
+    if data["kind"] != "triangle_setup" or not isinstance(edges, list):
+        return data
+    today = []
+    for index, edge in enumerate(edges):
+        if isinstance(edge, dict):
+            if "edge" not in edge:
+                raise Invalid("is missing field 'edge' (version 1)").at(f".edges[{index}]")
+            if type(edge["edge"]) is not int or edge["edge"] != index:
+                raise Invalid(
+                    f"must be {index}, the edge's place in 'edges' (version 1); "
+                    f"got {shown(edge['edge'])}"
+                ).at(f".edges[{index}].edge")
+            edge = {key: value for key, value in edge.items() if key != "edge"}
+        today.append(edge)
+    return {**data, "edges": today}
+
+
+def event_from_dict(data: object, version: int = FORMAT_VERSION) -> Event:
+    """The event of one decoded JSON object of format `version`; raises `schema.Invalid` with
+    the path inside it."""
     if not isinstance(data, dict):
         raise Invalid(f"must be an event object with a 'kind'; got {shown(data)}")
     if "kind" not in data:
@@ -88,6 +123,8 @@ def event_from_dict(data: object) -> Event:
         raise Invalid(
             f"is an unknown event kind {kind!r}{_close_kind(kind)}; known: {sorted(EVENT_TYPES)}"
         ).at(".kind")
+    if version == 1:
+        data = _from_version_1(data)
     return _EVENT_NODES[kind].decode(data, ignore=_KIND)  # type: ignore[return-value]
 
 
@@ -183,8 +220,10 @@ def trace_from_json(text: str) -> Trace:
 
     Examples
     --------
-    >>> trace_from_json('{"events": [{"kind": "span", "polygon": 0, "y": 1, "x_start": 2, "x_end": 5, "winding": 1}]}')
+    >>> trace_from_json('{"version": 2, "events": [{"kind": "span", "polygon": 0, "y": 1, "x_start": 2, "x_end": 5, "winding": 1}]}')
     Trace(1 events: {'span': 1})
+    >>> trace_from_json('{"events": []}')  # version 1: no "version" key
+    Trace(0 events: {})
     >>> trace_from_json('{"events": [{"kind": "span", "polygon": 0, "y": 1.5, "x_start": 2, "x_end": 5, "winding": 1}]}')
     Traceback (most recent call last):
     ...
@@ -198,13 +237,21 @@ def trace_from_json(text: str) -> Trace:
             f"trace JSON must be an object with an 'events' list; got {type(data).__name__}"
             + (f" with keys {sorted(data)[:10]}" if isinstance(data, dict) else "")
         )
-    extra = sorted(data.keys() - {"events"})
+    extra = sorted(data.keys() - {"version", "events"})
     if extra:
-        raise ValueError(f"trace JSON has unknown top-level keys {extra}; only 'events' is allowed")
+        raise ValueError(
+            f"trace JSON has unknown top-level keys {extra}; only 'version' and 'events' are allowed"
+        )
+    version = data.get("version", 1)
+    if type(version) is not int or version not in READABLE:
+        raise ValueError(
+            f"trace JSON at version: must be one of the versions this scanviz reads, {READABLE} "
+            f"(a file without 'version' is version 1); got {shown(version)}"
+        )
     events = []
     for index, item in enumerate(data["events"]):
         try:
-            events.append(event_from_dict(item))
+            events.append(event_from_dict(item, version))
         except Invalid as error:
             raise ValueError(f"trace JSON at events[{index}]{error.path()}: {error.rule}") from None
     return Trace(events)

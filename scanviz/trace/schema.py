@@ -3,9 +3,12 @@
 One small node per annotation form the events use: ``int``, ``float``,
 ``bool``, ``str``, ``Fraction``, ``X | None``, ``tuple[X, ...]``, fixed
 ``tuple[X, X, ...]`` and nested records. `validate` checks a record built in
-Python (events are built in hot traced loops, so its fast test is one type
-lookup per scalar field); `Node.decode` rebuilds a value from its JSON form.
-Both raise `Invalid`, which collects the path to the bad part on its way out.
+Python, nested records included (its fast test is one type lookup per scalar
+field); `Node.decode` rebuilds a value from its JSON form, checking it as it
+goes. Both raise `Invalid`, which collects the path to the bad part on its
+way out. Records check nothing when they are built: these are the checks of
+the places where data enters (the JSON reader, `scanviz.trace.codec`; the
+jail's wire decoder, `scanviz.exercises.jail.wire`).
 
 Non-finite floats travel as the strings ``"inf"``, ``"-inf"`` and ``"nan"``
 (strict JSON has no literal for them); exact fractions as ``"p/q"``.
@@ -167,7 +170,12 @@ class Nested(Node):
         self.depth = 1 + max((node.depth for _, node in self.fields), default=0)
 
     def fits(self, value: object) -> bool:
-        return isinstance(value, self.cls)
+        return isinstance(value, self.cls) and fits_record(value)
+
+    def check(self, value: object) -> None:
+        if not isinstance(value, self.cls):
+            raise Invalid(f"must be {self.expected}; got {shown(value)}")
+        _check_fields(value)
 
     def decode(self, data: object, ignore: frozenset[str] = frozenset()) -> object:
         if not isinstance(data, dict):
@@ -204,12 +212,6 @@ class TupleOf(Node):
         if exact is not None:  # plain loops: faster than all(map(...)) on short tuples
             for item in value:
                 if type(item) not in exact:
-                    return False
-            return True
-        if isinstance(self.item, Nested):
-            cls = self.item.cls
-            for item in value:
-                if not isinstance(item, cls):
                     return False
             return True
         return all(map(self.item.fits, value))
@@ -285,28 +287,50 @@ def _plan(cls: type) -> tuple[tuple, tuple]:
     return plan
 
 
-def validate(record: object) -> None:
-    """Raise TypeError naming the field, the position inside it and the type expected.
-
-    A record passing the fast test is valid; one failing it is checked field
-    by field (it may still be valid: an int where a float is due).
-    """
+def fits_record(record: object) -> bool:
+    """The fast test: every field has its exact type (False may still be valid: an int for a float)."""
     scalars, others = _PLANS.get(type(record)) or _plan(type(record))
     values = record.__dict__
     for name, exact in scalars:
         if type(values[name]) not in exact:
-            return _check_fields(record)
+            return False
     for name, fits in others:
         if not fits(values[name]):
-            return _check_fields(record)
-    return None
+            return False
+    return True
+
+
+def validate(record: object) -> None:
+    """Raise TypeError naming the field, the position inside it and the type expected.
+
+    Nested records are checked too. A record passing the fast test is valid;
+    one failing it is checked field by field (it may still be valid: an int
+    where a float is due).
+
+    Examples
+    --------
+    >>> from scanviz.trace.events import Span
+    >>> validate(Span(polygon=0, y=1, x_start=2, x_end=5, winding=1))
+    >>> validate(Span(polygon="x", y=1, x_start=2, x_end=5, winding=1))
+    Traceback (most recent call last):
+    ...
+    TypeError: Span field 'polygon' must be int; got 'x' (str)
+    """
+    if fits_record(record):
+        return
+    try:
+        _check_fields(record)
+    except Invalid as error:
+        field, inside = error.where[-1], "".join(reversed(error.where[:-1]))
+        raise TypeError(
+            f"{type(record).__name__} field {field[1:]!r}{inside} {error.rule}"
+        ) from None
 
 
 def _check_fields(record: object) -> None:
+    """Raise `Invalid` at the first field that breaks its rule (the path starts at the field)."""
     for name, node in fields_of(type(record)):
         try:
             node.check(getattr(record, name))
         except Invalid as error:
-            raise TypeError(
-                f"{type(record).__name__} field {name!r}{error.path()} {error.rule}"
-            ) from None
+            raise error.at(f".{name}") from None

@@ -29,7 +29,7 @@ from ..conventions import check_choice
 from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..trace import Recorder, Trace
-from ..trace.events import CutRecord, PaintOrder, PieceRecord
+from ..trace.events import PaintOrder, PieceRecord
 from .draw_decisions import paint
 from .screen_polygons import Piece, Surfaces
 from .zbuffer import ScreenPolygons, ZBufferStats, check_arguments, zbuffer
@@ -171,7 +171,7 @@ def piece_record(piece: Piece) -> PieceRecord:
         piece.label,
         piece.polygon,
         tuple((float(x), float(y), float(z)) for x, y, z in piece.vertices),
-        tuple(CutRecord(c.other, c.behind) for c in piece.cuts),
+        piece.cuts,
         piece.zmin,
         piece.zmax,
     )

@@ -34,19 +34,12 @@ import numpy as np
 
 from ..raster.fixed import exact_bits, snap_units
 from ..raster.interpolate import depth_plane, plane_depth, reaches_raster, vertex_channels
+from ..trace.events import Cut  # the trace's record is the domain record
 from . import zbuffer_compiled
 from .zbuffer import ScreenPolygons
 
 PLANE_TOLERANCE = 1e-9  # relative to the scene's depth magnitude (at least 1)
 BEHIND, FRONT, ON, STRADDLES = "behind", "front", "on", "straddles"
-
-
-@dataclass(frozen=True)
-class Cut:
-    """Keep the samples where z_polygon - z_other > 0 (``behind``) or <= 0 (not ``behind``)."""
-
-    other: int
-    behind: bool
 
 
 @dataclass(frozen=True)

@@ -13,8 +13,15 @@ from hypothesis import strategies as st
 from scanviz import Recorder, Trace, render, scan_convert
 from scanviz.catalog import SHAPES, get
 from scanviz.conventions import SAMPLE_MODES
+from scanviz.exercises.jail import wire
 from scanviz.limits import file_limit, memory_limit
-from scanviz.trace import AetEntry, AetSorted, DepthTest, EdgeTableBuilt, Span, TriangleSetup
+from scanviz.raster.edgefn import triangle_samples
+from scanviz.shading.fast_phong import ReflectionModel, fast_phong_triangle
+from scanviz.shading.taylor import RationalForms
+from scanviz.trace import AetEntry, AetSorted, DepthTest, EdgeTableBuilt, Span, TriangleSetup, codec
+from scanviz.trace.codec import FORMAT_VERSION
+from scanviz.trace.events import EdgeFunction
+from scanviz.trace.schema import validate
 
 BASE = settings.default.max_examples
 SCAN_KINDS = ("edge_table_built", "edges_activated", "edges_retired", "aet_sorted", "span")
@@ -212,7 +219,7 @@ def test_json_round_trip_for_every_catalog_shape(name, sample, arithmetic, bits)
 
 def test_json_shape_matches_the_cli_spec(trace):
     data = json.loads(trace.to_json())
-    assert list(data) == ["events"]
+    assert list(data) == ["version", "events"] and data["version"] == FORMAT_VERSION == 2
     events = data["events"]
     assert len(events) == len(trace) and all("kind" in e for e in events)
     for event in events:
@@ -238,6 +245,107 @@ def test_json_keeps_every_float_bit():
         Fraction,
     )
     assert isinstance(trace.of_kind("aet_sorted")[0], AetSorted)
+
+
+# --- issue 24: the format is versioned; version 1 (no "version" key) still reads ---------
+
+# A version-1 file (what scanviz wrote before issue 24; the triangle is triangle_samples'
+# output for (0, 0), (4, 0), (0, 4) on 4 x 4 with subpixel_bits=0): no "version" key, and
+# each edge of a triangle_setup carried its index.
+V1_TRIANGLE = {
+    "kind": "triangle_setup", "polygon": 0, "vertices": [[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]],
+    "units": [[0, 0], [8, 0], [0, 8]], "scale": 2,
+    "edges": [
+        {"edge": 0, "a": 0, "b": 8, "c": 0, "owns_boundary": True},
+        {"edge": 1, "a": -8, "b": -8, "c": 64, "owns_boundary": False},
+        {"edge": 2, "a": 8, "b": 0, "c": 0, "owns_boundary": True},
+    ],
+    "area2": 64, "orientation": 1, "bbox": [0, 0, 4, 4],
+}  # fmt: skip
+V1_TRACE = """{"events": [
+  {"kind": "span", "polygon": 0, "y": 1, "x_start": 2, "x_end": 5, "winding": 1},
+  {"kind": "aet_sorted", "polygon": 0, "y": 2, "swaps": 1, "entries": [
+    {"edge": 3, "x": 3.7, "x_exact": "37/10", "dxdy": -0.3, "dxdy_exact": "-3/10",
+     "ymax": 11.0, "winding": 1}]},
+  {"kind": "depth_test", "polygon": 1, "x": 4, "y": 2, "z": 0.25, "stored": "inf", "passed": true}
+]}"""
+
+
+def test_issue24_a_version_1_trace_reads_to_todays_events():
+    entry = AetEntry(3, 3.7, Fraction(37, 10), -0.3, Fraction(-3, 10), 11.0, 1)
+    expected = Trace(
+        [
+            Span(0, 1, 2, 5, 1),
+            AetSorted(0, 2, (entry,), 1),
+            DepthTest(1, 4, 2, 0.25, math.inf, True),
+        ]
+    )
+    assert Trace.from_json(V1_TRACE) == expected
+    assert json.loads(expected.to_json())["version"] == 2
+    assert Trace.from_json(expected.to_json()) == expected
+
+
+def test_issue24_a_version_1_triangle_setup_reads_with_the_edge_records_of_today():
+    today = triangle_samples(
+        [(0, 0), (4, 0), (0, 4)], 4, 4, subpixel_bits=0, trace=Recorder(["triangle_setup"])
+    ).trace
+    back = Trace.from_json(json.dumps({"events": [V1_TRIANGLE]}))
+    assert back == today and type(back[0].edges[1]) is EdgeFunction
+    assert back[0].edges[1] == EdgeFunction(-8, -8, 64, False) and back[0].edges[1].at(1, 1) == 48
+    written = json.loads(today.to_json())
+    assert written["version"] == 2 and written["events"][0]["edges"][1] == {
+        "a": -8, "b": -8, "c": 64, "owns_boundary": False
+    }  # fmt: skip
+
+
+def v1_triangle_with_edge_1(**edge: object) -> dict:
+    edges = list(V1_TRIANGLE["edges"])
+    edges[1] = {key: value for key, value in {**edges[1], **edge}.items() if value is not None}
+    return {**V1_TRIANGLE, "edges": edges}
+
+
+@pytest.mark.parametrize(
+    ("top", "message"),
+    [
+        (
+            {"events": [v1_triangle_with_edge_1(edge=7)]},
+            r"events\[0\]\.edges\[1\]\.edge: must be 1, the edge's place in 'edges' "
+            r"\(version 1\); got 7 \(int\)",
+        ),
+        (
+            {"events": [v1_triangle_with_edge_1(edge=True)]},
+            r"events\[0\]\.edges\[1\]\.edge: must be 1, .*; got True \(bool\)",
+        ),
+        (
+            {"events": [v1_triangle_with_edge_1(edge=None)]},
+            r"events\[0\]\.edges\[1\]: is missing field 'edge' \(version 1\)",
+        ),
+        (  # version 2 has no index: an "edge" key is an unknown field
+            {"version": 2, "events": [V1_TRIANGLE]},
+            r"events\[0\]\.edges\[0\]\.edge: is not a field of EdgeFunction",
+        ),
+    ],
+)
+def test_issue24_triangle_edges_are_checked_in_either_version(top, message):
+    with pytest.raises(ValueError, match=r"^trace JSON at " + message):
+        Trace.from_json(json.dumps(top))
+
+
+def test_issue24_version_1_fast_phong_forms_read_as_the_domain_record():
+    # Version 2 left this event's shape alone (the fast Phong forms, once a copy of the
+    # shading record, are that record now; JSON never named it), so its version-1 text is
+    # today's text without the "version" key.
+    model = ReflectionModel(Ia=255, ka=0.1, Ip=255, kd=(0.7, 0.5, 0.2), ks=0.7, n=8, r_plus_r0=1.5)
+    normals = [(0, 0, 1), (0.3, 0, 1), (0, 0.3, 1)]
+    trace = fast_phong_triangle(
+        [(1, 1), (14, 2), (5, 12)], normals, (0.2, 0.3, 1), (0, 0, 1), model,
+        width=16, height=16, trace=Recorder(["fast_phong_setup"]),
+    ).trace  # fmt: skip
+    data = json.loads(trace.to_json())
+    del data["version"]
+    back = Trace.from_json(json.dumps(data))
+    assert back == trace and len(back) == 1
+    assert all(type(e.forms) is RationalForms for e in back)
 
 
 @pytest.mark.parametrize(
@@ -406,6 +514,12 @@ def test_issue8_d6_json_text_size_is_bounded():
             r"at events\[0\]\.normal: must have 3 items; got 2",
         ),
         ('{"events": [], "meta": 1}', r"unknown top-level keys \['meta'\]"),
+        (
+            '{"version": 3, "events": []}',
+            r"at version: must be one of .* \(1, 2\).*; got 3 \(int\)",
+        ),
+        ('{"version": "2", "events": []}', r"at version: .*; got '2' \(str\)"),
+        ('{"version": true, "events": []}', r"at version: .*; got True \(bool\)"),
         ('{"events": [', r"not valid JSON: Expecting value: line 1 column 13"),
         ('\\"' * 20_000, r"not valid JSON"),  # escaped quotes: the string scan stays linear
     ],
@@ -421,33 +535,85 @@ def test_issue8_d10_json_text_must_be_a_str(text):
         Trace.from_json(text)
 
 
-def test_issue8_d10_events_check_their_field_types():
-    with pytest.raises(TypeError, match=r"^Span field 'polygon' must be int; got 'x' \(str\)$"):
-        Span(polygon="x", y=[1], x_start=0, x_end=1, winding=1)
-    with pytest.raises(TypeError, match=r"^Span field 'y' must be int; got \[1\] \(list\)$"):
-        Span(polygon=0, y=[1], x_start=0, x_end=1, winding=1)
-    with pytest.raises(TypeError, match=r"Span field 'winding' must be int; got True"):
-        Span(polygon=0, y=0, x_start=0, x_end=1, winding=True)
-    with pytest.raises(
-        TypeError, match=r"Span field 'x_end' must be int; got np\.int64\(1\)|got 1 \(int64\)"
-    ):
-        Span(polygon=0, y=0, x_start=0, x_end=np.int64(1), winding=1)
-    with pytest.raises(
-        TypeError, match=r"TriangleSetup field 'vertices'\[1\]\[0\] must be a float"
-    ):
-        TriangleSetup(0, ((0.0, 1.0), ("a", 2.0)), ((0, 0),), 256, (), 0, 1, (0, 0, 1, 1))
-    with pytest.raises(TypeError, match=r"TriangleSetup field 'bbox' must have 4 items; got 3"):
-        TriangleSetup(0, ((0.0, 1.0),), ((0, 0),), 256, (), 0, 1, (0, 0, 1))
-    with pytest.raises(TypeError, match=r"AetSorted field 'entries'\[0\] must be AetEntry"):
-        AetSorted(0, 1, (Span(0, 1, 2, 3, 1),), 0)
-    with pytest.raises(
-        TypeError, match=r"AetEntry field 'x_exact' must be a Fraction .* or None; got 1\.5"
-    ):
-        AetEntry(0, 1.5, 1.5, 0.0, None, 2.0, 1)
-    with pytest.raises(TypeError, match=r"DepthTest field 'z' must be a float within"):
-        DepthTest(0, 1, 2, 10**400, None, True)
+BAD_RECORDS = [  # (a record with a wrong field, the validator's message, its JSON path or None)
+    # The wire decoder builds nested records first: it names the innermost record at fault.
+    (
+        lambda: Span(polygon="x", y=[1], x_start=0, x_end=1, winding=1),
+        r"^Span field 'polygon' must be int; got 'x' \(str\)$",
+        r"\.polygon: must be int; got 'x' \(str\)$",
+    ),
+    (
+        lambda: Span(polygon=0, y=[1], x_start=0, x_end=1, winding=1),
+        r"^Span field 'y' must be int; got \[1\] \(list\)$",
+        r"\.y: must be int; got \[1\] \(list\)$",
+    ),
+    (
+        lambda: Span(polygon=0, y=0, x_start=0, x_end=1, winding=True),
+        r"Span field 'winding' must be int; got True",
+        r"\.winding: must be int; got True",
+    ),
+    (
+        lambda: Span(polygon=0, y=0, x_start=0, x_end=np.int64(1), winding=1),
+        r"Span field 'x_end' must be int; got np\.int64\(1\)|got 1 \(int64\)",
+        None,  # JSON has no numpy ints
+    ),
+    (
+        lambda: TriangleSetup(0, ((0.0, 1.0), ("a", 2.0)), ((0, 0),), 256, (), 0, 1, (0, 0, 1, 1)),
+        r"TriangleSetup field 'vertices'\[1\]\[0\] must be a float",
+        r"\.vertices\[1\]\[0\]: must be a float",
+    ),
+    (
+        lambda: TriangleSetup(0, ((0.0, 1.0),), ((0, 0),), 256, (), 0, 1, (0, 0, 1)),
+        r"TriangleSetup field 'bbox' must have 4 items; got 3",
+        r"\.bbox: must have 4 items; got 3",
+    ),
+    (
+        lambda: AetSorted(0, 1, (Span(0, 1, 2, 3, 1),), 0),
+        r"AetSorted field 'entries'\[0\] must be AetEntry",
+        r"\.entries\[0\]\.kind: is not a field of AetEntry",
+    ),
+    (
+        lambda: AetEntry(0, 1.5, 1.5, 0.0, None, 2.0, 1),
+        r"AetEntry field 'x_exact' must be a Fraction .* or None; got 1\.5",
+        None,  # not an event: JSON holds it only inside one (next case)
+    ),
+    (
+        lambda: AetSorted(0, 1, (AetEntry(0, 1.5, 1.5, 0.0, None, 2.0, 1),), 0),
+        r"AetSorted field 'entries'\[0\]\.x_exact must be a Fraction .* or None; got 1\.5"
+        r"|^not a valid AetEntry: AetEntry field 'x_exact' must be a Fraction .* got 1\.5",
+        r"\.entries\[0\]\.x_exact: must be a Fraction .*; got 1\.5",
+    ),
+    (
+        lambda: DepthTest(0, 1, 2, 10**400, None, True),
+        r"DepthTest field 'z' must be a float within",
+        r"\.z: must be a float within",
+    ),
+]
+
+
+@pytest.mark.parametrize(("build", "message", "json_path"), BAD_RECORDS)
+def test_issue8_d10_records_are_checked_where_they_enter(build, message, json_path):
+    # Issue 24: building a record checks nothing (the traced loops build them hot); the one
+    # validator names the field, and it runs where records enter: the JSON reader and the
+    # jail's wire decoder (a student's events and a replaced step's records come in there).
+    record = build()
+    with pytest.raises(TypeError, match=message):
+        validate(record)
+    plain = wire.encode(record)
+    with pytest.raises(wire.WireError, match=message.lstrip("^")):
+        wire.decode(plain)
+    if json_path is not None:
+        with pytest.raises(ValueError, match=r"^trace JSON at events\[0\]" + json_path):
+            Trace.from_json(json.dumps({"events": [codec.encode(record)]}))
+
+
+def test_issue8_d10_the_validator_accepts_equal_values():
     # An int stands for a float (equal by value); None where the annotation allows it.
+    validate(DepthTest(0, 1, 2, 3, None, True))
     assert DepthTest(0, 1, 2, 3, None, True) == DepthTest(0, 1, 2, 3.0, None, True)
+    assert wire.decode(wire.encode(DepthTest(0, 1, 2, 3, None, True))) == DepthTest(
+        0, 1, 2, 3.0, None, True
+    )
     with pytest.raises(TypeError, match=r"'events'\[1\] must be an Event; got 1"):
         Trace([Span(0, 1, 2, 3, 1), 1])
 

@@ -2,9 +2,10 @@
 
 The runner sees a *runtime*: ``runner.py`` and ``wire.py``, and a package
 ``scanviz`` that holds only ``scanviz.trace.events`` (the records a loop
-exercise emits), written once per grading process into a temporary folder
-(`runtime`). Beside it, numpy, and Python's own standard library: nothing
-else of scanviz (which holds the reference), no other package.
+exercise emits, one module per stage) and the ``schema`` that checks them,
+written once per grading process into a temporary folder (`runtime`).
+Beside it, numpy, and Python's own standard library: nothing else of
+scanviz (which holds the reference), no other package.
 
 `jail_command` puts it in bubblewrap (Debian's ``bubblewrap``): new user,
 PID, network, IPC, UTS and cgroup namespaces (no network, no other process
@@ -78,8 +79,13 @@ def runtime(copy_numpy: bool = False) -> Path:
     (lib / "scanviz" / "trace").mkdir(parents=True)
     for name in ("runner.py", "wire.py"):
         shutil.copyfile(_HERE / name, lib / name)
-    for name in ("events.py", "schema.py", "display.py"):
+    for name in ("schema.py", "display.py"):
         shutil.copyfile(_PACKAGE / "trace" / name, lib / "scanviz" / "trace" / name)
+    shutil.copytree(
+        _PACKAGE / "trace" / "events",
+        lib / "scanviz" / "trace" / "events",
+        ignore=shutil.ignore_patterns("__pycache__"),
+    )
     (lib / "scanviz" / "__init__.py").write_text(_RUNTIME_SCANVIZ, encoding="utf-8")
     (lib / "scanviz" / "trace" / "__init__.py").write_text(_RUNTIME_SCANVIZ, encoding="utf-8")
     site = root / "site"

@@ -2,7 +2,8 @@
 
 Both sides use this file: the grader (``scanviz.exercises.jail.wire``) and the
 runner inside the jail (``wire``, next to ``runner.py``), so it imports
-nothing of scanviz but the trace events, which the jail has too. A value is:
+nothing of scanviz but the trace events and their schema, which the jail has
+too. A value is:
 
 - ``null``, ``true``, ``false``, an int, a finite float, a string;
 - ``{"$f": "nan" | "inf" | "-inf"}``: a float that is not finite;
@@ -29,7 +30,10 @@ process would.
 can make the grader work or allocate without bound. Records decode to the
 class of the same name where the decoder knows one (the trace events and
 records, and on the grader's side the classes it sent), else to a `Fields`
-(a dataclass by another name) or a plain tuple (a named tuple).
+(a dataclass by another name) or a plain tuple (a named tuple). A trace
+record is checked against its annotations as it is built
+(`scanviz.trace.schema.validate`): records built in Python check nothing,
+so this is where an answer's events and records are checked.
 """
 
 from __future__ import annotations
@@ -40,6 +44,7 @@ import math
 from fractions import Fraction
 
 from scanviz.trace import events
+from scanviz.trace.schema import validate
 
 MAX_NODES = 2_000_000  # values in one message
 MAX_INT_BITS = 4096  # an int's (or a fraction's term's) size
@@ -51,12 +56,10 @@ FORMS = ("dataclass", "frozen", "namedtuple")
 
 TRACE_RECORDS: dict[str, type] = {
     name: value
-    for name, value in vars(events).items()
-    if isinstance(value, type)
-    and dataclasses.is_dataclass(value)
-    and value.__module__ == events.__name__
+    for name in events.__all__
+    if isinstance(value := getattr(events, name), type) and dataclasses.is_dataclass(value)
 }
-"""Every trace event and record class, by name: both sides build these for real."""
+"""Every trace event and record class, by name: both sides build these for real (and check them)."""
 
 
 class WireError(ValueError):
@@ -427,8 +430,11 @@ class Decoder:
         try:
             if issubclass(cls, tuple):
                 return cls(*fields.values())
-            return cls(**fields)
-        except Exception as error:  # the record's own checks (trace records check their types)
+            record = cls(**fields)
+            if isinstance(record, events.Record):
+                validate(record)  # where a trace record enters: it is checked here, not when built
+            return record
+        except Exception as error:  # a missing or unknown field, or a trace record's wrong type
             raise WireError(f"not a valid {name}: {error}") from None
 
     def _array(self, data: dict, depth: int) -> tuple[object, object]:
