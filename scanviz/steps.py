@@ -14,8 +14,12 @@ trace shows what the student's step does::
 While any step is replaced, the entry points run their traced reference
 loop, never a compiled kernel (the kernels have no table). The replacement is
 held in a `contextvars.ContextVar`, so it is local to the thread or task that
-made it. ``docs/exercises.md`` lists every step (`table()`): what it takes,
-what it returns.
+made it. A reference loop trusts what its steps return: a replacement of a
+step listed in `CHECKS` is called through that step's check (`check`), which
+raises a clear error on a result the loop cannot use and hands the loop the
+result in the reference's form (the scan steps' checks:
+`scanviz.exercises.scan_checks`). ``docs/exercises.md`` lists every step
+(`table()`): what it takes, what it returns.
 """
 
 from __future__ import annotations
@@ -67,7 +71,14 @@ LOCATIONS: dict[str, str] = {
     "dislop_column": "scanviz.antialias.line",
     "table_index": "scanviz.antialias.tables",
 }
+# The module that registers the check of a replacement of each checked step (`check`); looked
+# up by name as LOCATIONS is, so this module imports no exercise module.
+CHECKS: dict[str, str] = {
+    "edge_table_entry": "scanviz.exercises.scan_checks",
+    "aet_update": "scanviz.exercises.scan_checks",
+}
 _TABLE: dict[str, Step] = {}
+_CHECKERS: dict[str, Callable] = {}
 _NONE: MappingProxyType = MappingProxyType({})
 _REPLACED: ContextVar[MappingProxyType] = ContextVar("scanviz_steps", default=_NONE)
 
@@ -90,10 +101,37 @@ def step(name: str, *, takes: str, returns: str) -> Callable[[Callable], Callabl
     return register
 
 
-def get(name: str) -> Callable:
-    """The function that currently implements step `name` (the reference unless replaced)."""
+def check(name: str) -> Callable[[Callable], Callable]:
+    """Register the decorated function as the check of step `name`'s replacements.
+
+    It is called as ``checker(replacement, **context)`` (`context`: what the
+    loop passes to `get`) and returns the function the loop calls instead.
+    """
+
+    def register(checker: Callable) -> Callable:
+        if CHECKS.get(name) != checker.__module__:
+            raise TypeError(f"the check of step {name!r} is not listed in CHECKS")
+        _CHECKERS[name] = checker
+        return checker
+
+    return register
+
+
+def get(name: str, **context) -> Callable:
+    """The function that currently implements step `name` (the reference unless replaced).
+
+    A replacement comes through its step's check (`CHECKS`), made afresh for
+    this call with the loop's `context` (e.g. the grid's scale): a loop gets
+    its steps once per run.
+    """
     replaced = _REPLACED.get()
-    return replaced[name] if name in replaced else _registered(name).reference
+    if name not in replaced:
+        return _registered(name).reference
+    if name not in CHECKS:
+        return replaced[name]
+    if name not in _CHECKERS:
+        importlib.import_module(CHECKS[name])
+    return _CHECKERS[name](replaced[name], **context)
 
 
 def replaced() -> frozenset[str]:

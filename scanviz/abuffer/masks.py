@@ -27,6 +27,8 @@ Two implementations give the same masks:
 
 from __future__ import annotations
 
+import itertools
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -36,7 +38,7 @@ from ..conventions import RULES, check_choice, check_raster_size, check_subpixel
 from ..geometry import Polygon
 from ..raster.api import as_tracer, scan_snapped
 from ..raster.fixed import SnappedPolygon, exact_bits, snap_units
-from ..raster.scanline import ActiveEdge, build_edge_table
+from ..raster.scanline import bucketed_edge_table, scan_rows
 from ..trace import Recorder, Trace, Tracer
 from ..trace.events import EdgeMask, EdgeMaskEntry, MaskBufferPixel, MaskBufferRow, MaskRun
 
@@ -249,13 +251,16 @@ def mask_buffer_rows(
 ) -> MaskResult:
     """The thesis' mask buffer (§6.3.2-6.3.3): pixel masks row by row from edge masks, traced.
 
-    For each pixel row y: add the edges whose y-extent reaches the row to the
-    active edges; scan each into the mask buffer, where on every sub-row it
-    crosses it marks the sub-samples at or right of its exact crossing with
-    its winding; combine the edge masks of each pixel with the winding
-    carried in from the left, sub-row by sub-row, under the fill rule; retire
-    the edges that end in the row. Emits one `mask_buffer_row` event per
-    pixel row and one `edge_mask` event per edge and crossed pixel.
+    The sub-rows are the rows of the ET/AET walk (`scan_rows`) of the polygon
+    scaled by the mask's sub-samples per pixel, so the replaceable steps
+    (``edge_table_entry``, ``aet_update``) drive the mask buffer as they drive
+    `scan_convert`. For each pixel row y: take the active edges' crossings of
+    its sub-rows from their AETs; scan each edge into the mask buffer, where
+    on every sub-row it crosses it marks the sub-samples at or right of its
+    crossing with its winding; combine the edge masks of each pixel with the
+    winding carried in from the left, sub-row by sub-row, under the fill rule.
+    Emits one `mask_buffer_row` event per pixel row and one `edge_mask` event
+    per edge and crossed pixel.
 
     Parameters are those of `pixel_masks`; `trace` defaults to a new `Recorder`.
 
@@ -286,28 +291,27 @@ def mask_buffer_rows(
     bits = check_subpixel_bits(subpixel_bits)
     tracer = as_tracer(trace)
     scaled = subsample_polygon(polygon, mask, bits)
-    edges = [e for e in build_edge_table(scaled) if e.bucket < e.row_end]  # cross a sub-row
-    edges.sort(key=lambda e: e.bucket)
+    table = bucketed_edge_table(scaled, height * rows)
     ys: list[int] = []
     xs: list[int] = []
     masks: list[int] = []
-    active: list[ActiveEdge] = []
-    y = max(edges[0].bucket // rows, 0) if edges else height
-    while y < height and (active or edges):
-        if not active and edges[0].bucket // rows > y:
-            y = edges[0].bucket // rows  # skip empty rows
-            continue
-        while edges and edges[0].bucket // rows <= y:  # (a) activate this row's edges
-            active.append(edges.pop(0))
-        buffer = _mask_buffer(active, y, (cols, rows), width, rule == "evenodd")  # (b)
+    sub_rows = scan_rows(scaled, table, width * cols, height * rows, rule=rule)  # the ET/AET walk
+    for y, row_sub_rows in itertools.groupby(sub_rows, key=lambda sub_row: sub_row.y // rows):
+        crossings = [  # (a) the active edges' crossings of the row's sub-rows, from their AETs
+            (table.edges[item.edge], sub_row.y - y * rows, item.x)
+            for sub_row in row_sub_rows
+            for item in sub_row.aet
+        ]
+        if not crossings:
+            continue  # edges only retired here
+        buffer = _mask_buffer(crossings, (cols, rows), width, rule == "evenodd")  # (b)
         for x, pixel_mask in _row_masks(*buffer[:2]):
             ys.append(y)
             xs.append(x)
             masks.append(pixel_mask)
         if tracer is not None:
+            active = tuple(sorted({edge.edge for edge, _, _ in crossings}))
             _emit_row(tracer, polygon_index, y, mask, active, *buffer)
-        active = [e for e in active if e.row_end > (y + 1) * rows]  # (c) retire ended edges
-        y += 1
     recorded = tracer.trace() if isinstance(tracer, Recorder) else None
     return MaskResult(
         np.array(ys, dtype=np.int64),
@@ -318,30 +322,22 @@ def mask_buffer_rows(
     )
 
 
-def _crossings(active: list[ActiveEdge], y: int, rows: int):
-    """Yield (edge, j, column) for every active edge crossing sub-row j of pixel row y.
+def _edge_masks(crossings, layout, width):
+    """Every active edge scanned into the buffer of a row, before combining.
 
-    `column` is the first sub-sample column at or right of the exact crossing,
-    ceil(x_c) in the scaled frame: a sub-sample exactly on the edge is right of it.
-    """
-    for edge in active:
-        for sub_row in range(max(edge.bucket, y * rows), min(edge.row_end, (y + 1) * rows)):
-            edge.crossing.start(sub_row)
-            yield edge, sub_row - y * rows, edge.crossing.ceil()
-
-
-def _edge_masks(active, y, layout, width):
-    """Every active edge scanned into the buffer of row y, before combining.
-
-    Returns (crossed, carry_steps): crossed[x][edge] = [winding, (rows, cols)
-    grid of the edge's bits, exact crossing x per sub-row or None] for each
-    pixel x the edge crosses, and (first_column, sub_row, winding) per
-    crossing, from which the winding carried into any pixel follows.
+    `crossings` are (edge, sub-row j, x) in the scaled frame; an edge's
+    sub-samples at or right of x, from column ceil(x), are its edge mask (a
+    sub-sample exactly on the edge is right of it). Returns (crossed,
+    carry_steps): crossed[x][edge] = [winding, (rows, cols) grid of the edge's
+    bits, exact crossing x per sub-row or None] for each pixel x the edge
+    crosses, and (first_column, sub_row, winding) per crossing, from which the
+    winding carried into any pixel follows.
     """
     cols, rows = layout
     crossed: dict[int, dict[int, list]] = {}
     carry_steps = []
-    for edge, j, column in _crossings(active, y, rows):
+    for edge, j, x_crossing in crossings:
+        column = math.ceil(x_crossing)
         carry_steps.append((column, j, edge.winding))
         if not 0 <= column < width * cols:
             continue  # left of the raster it only adds to the carry; right of it, nothing
@@ -350,7 +346,7 @@ def _edge_masks(active, y, layout, width):
             edge.edge, [edge.winding, np.zeros((rows, cols), bool), [None] * rows]
         )
         entry[1][j, i:] = True
-        entry[2][j] = (edge.crossing.exact() + Fraction(1, 2)) / cols  # back to pixels
+        entry[2][j] = (x_crossing + Fraction(1, 2)) / cols  # back to pixels
     return crossed, carry_steps
 
 
@@ -372,8 +368,8 @@ def _run_mask(carry, cols, evenodd) -> int:
     return _grid_to_mask(np.repeat(_inside(carry, evenodd)[:, None], cols, axis=1))
 
 
-def _mask_buffer(active, y, layout, width, evenodd):
-    """The mask buffer of row y: (pixels, runs, crossed).
+def _mask_buffer(crossings, layout, width, evenodd):
+    """The mask buffer of a row from its crossings (`_edge_masks`): (pixels, runs, crossed).
 
     `pixels` are the `MaskBufferPixel` of the crossed pixels (each bit: its
     sub-row's carry plus the windings of the edge masks holding it, under the
@@ -381,7 +377,7 @@ def _mask_buffer(active, y, layout, width, evenodd):
     `crossed` as `_edge_masks` returns it.
     """
     cols, rows = layout
-    crossed, carry_steps = _edge_masks(active, y, layout, width)
+    crossed, carry_steps = _edge_masks(crossings, layout, width)
     pixels, runs, x_start = [], [], 0
     for x in [*sorted(crossed), width]:
         run_mask = _run_mask(_carry(carry_steps, x_start * cols, rows), cols, evenodd)
@@ -406,11 +402,11 @@ def _row_masks(pixels, runs) -> list[tuple[int, int]]:
 
 
 def _emit_row(tracer: Tracer, polygon: int, y: int, mask: str, active, pixels, runs, crossed):
+    """The row's `edge_mask` events and its `mask_buffer_row` (`active`: the sorted edge ids)."""
     if tracer.wants("edge_mask", polygon=polygon, y=y):
         for pixel in pixels:
             for e in pixel.edges:
                 crossings = tuple(crossed[pixel.x][e.edge][2])
                 tracer.emit(EdgeMask(polygon, y, pixel.x, e.edge, e.winding, crossings, e.mask))
     if tracer.wants("mask_buffer_row", polygon=polygon, y=y):
-        active_ids = tuple(sorted(e.edge for e in active))
-        tracer.emit(MaskBufferRow(polygon, y, mask, active_ids, tuple(pixels), tuple(runs)))
+        tracer.emit(MaskBufferRow(polygon, y, mask, active, tuple(pixels), tuple(runs)))

@@ -1,4 +1,8 @@
-"""Exercises on polygon scan conversion (scanviz.raster.scanline): ET, AET, spans, the loop."""
+"""Exercises on polygon scan conversion (scanviz.raster.scanline): ET, AET, spans, the loop.
+
+A student's ``edge_table_entry`` or ``aet_update`` is installed with `steps.using`
+and so reaches the reference loop through its check (`.scan_checks`).
+"""
 
 from __future__ import annotations
 

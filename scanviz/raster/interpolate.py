@@ -46,7 +46,7 @@ from .. import buffers, steps
 from ..threads import use_threads
 from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
 from .fixed import SnappedPolygon
-from .scanline import ActiveEdge, AetItem, ScanRow, bucketed_edge_table, scan_rows
+from .scanline import AetItem, Edge, ScanRow, bucketed_edge_table, scan_rows
 
 # --- the formulas, shared with the compiled kernel -----------------------------------------
 
@@ -365,20 +365,20 @@ def emit_polygon_setup(
     )
 
 
-def _vertex_ends(edge: ActiveEdge, units: np.ndarray) -> tuple[int, int]:
+def _vertex_ends(edge: Edge, units: np.ndarray) -> tuple[int, int]:
     """(lower, upper) vertex indices of edge i, which joins vertex i to vertex i + 1 (mod n)."""
     i, j = edge.edge, (edge.edge + 1) % len(units)
     return (i, j) if edge.lower == (int(units[i, 0]), int(units[i, 1])) else (j, i)
 
 
-def _edge_interpolant(edge: ActiveEdge, snapped: SnappedPolygon, vertex_values, y: int):
+def _edge_interpolant(edge: Edge, snapped: SnappedPolygon, vertex_values, y: int):
     """The values of an edge entering the AET on row y, directly from its lower end."""
     lower, upper = _vertex_ends(edge, snapped.units)
     y_lower, y_upper = edge.lower[1] / snapped.scale, edge.upper[1] / snapped.scale
     return EdgeInterpolant(vertex_values[lower], vertex_values[upper], y_lower, y_upper, y)
 
 
-def _crossing_float(x: object, edge: ActiveEdge, exact: type) -> float:
+def _crossing_float(x: object, edge: Edge, exact: type) -> float:
     """An AET x as the float `crossing_x` makes of it, its operands of type `exact`.
 
     The reference ``aet_update`` keeps x = q + r/den on the grid of the edge's

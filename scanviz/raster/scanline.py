@@ -1,36 +1,38 @@
 """Polygon scan conversion with an edge table and an active edge table (reference, traced).
 
-The algorithm of the CS184 scanline notes and the UMBC CMSC 435 slides:
+The algorithm of Foley, van Dam, Feiner & Hughes (1990, §3.6, "Filling
+Polygons"), as the UMBC CMSC 435 slides and the CS184 scanline notes teach it:
 
 1. Build the edge table (ET): every non-horizontal edge goes into bucket
-   ceil(ymin) and stays active for sample rows ymin <= y < ymax
+   ceil(ymin) and stays active for the sample rows ymin <= y < ymax
    (step ``edge_table_entry``).
-2. For each sample row from the first bucket up: retire edges whose ymax has
-   been passed, step the x of the others by dx/dy, add the edges of this
-   row's bucket, re-sort the active edge table (AET) by x (step ``aet_update``).
+2. For each sample row from the first bucket up: retire the edges whose ymax
+   has been passed, step the x of the others by dx/dy, add the edges of this
+   row's bucket and re-sort the active edge table (AET) by x (step ``aet_update``).
 3. Walk the AET left to right keeping a winding count; between consecutive
-   crossings where the count says "inside", emit the span
+   crossings where the count says "inside", fill the span
    [ceil(x_in), ceil(x_out)) (step ``span_rule``).
 
-The three steps come from the step table (`scanviz.steps`) and work on
-textbook values in pixels, with sample rows at integer y: exact `Fraction`
-coordinates, and in the AET an exact `Fraction` x stepped by an exact dx/dy,
-so there is no drift at any edge length. The loop sets each entering edge's
-first x from its integer crossing, x = q + r/den (quotient plus remainder), and
-from then on the AET holds the x that ``aet_update`` returns, so a replaced
-step shows its consequences in the trace. The textbook ``x += dx/dy`` in
-float32 or float64 is there to show the drift: then the AET's x and dx/dy are
-numpy floats of that type. Steps 2 and 3 are one walk, `scan_rows`, which
-`scan_reference` and the interpolating walk of the traced z-buffer
-(`scanviz.raster.interpolate.interpolate_rows`) both consume, so a replaced
-step shows in both. This module is the readable reference;
-`scanviz.raster.scan_compiled` is its compiled twin and produces the same spans.
+The steps work in pixels with sample rows at integer y: exact `Fraction`
+coordinates, and in the AET an exact x stepped by an exact dx/dy, so nothing
+drifts at any edge length. The textbook ``x += dx/dy`` in float32 or float64
+is there to show the drift (``arithmetic=``): the AET's x and dx/dy are then
+numpy floats. One `Edge` record holds each edge: its ends on the integer grid
+of `scanviz.raster.fixed`, its rows, its winding and its `crossing` of the
+current row; the trace's records are built from it when an event is emitted.
+
+The three steps come from the step table (`scanviz.steps`), so a replaced step
+drives the real loop and its consequences show in the trace. The loop trusts
+its steps: a replaced one is called through its check
+(`scanviz.exercises.scan_checks`). Steps 2 and 3 are one walk, `scan_rows`,
+which `scan_reference`, the traced z-buffer (`scanviz.raster.interpolate`) and
+the mask buffer (`scanviz.abuffer.masks`) consume. `scanviz.raster.scan_compiled`
+is the compiled twin: the same spans.
 """
 
 from __future__ import annotations
 
 import math
-import numbers
 import operator
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -51,19 +53,47 @@ from ..trace.events import (
     EdgeTableBuilt,
     Span,
 )
-from ..trace.schema import shown
 from .fixed import SnappedPolygon
 
 FLOAT_X_LIMIT = 2.0**40  # float-mode crossings are clamped here before ceil (spans clip anyway)
 LISTED_SPAN_BYTES = 160  # a span as a tuple of three Python ints in a list, with its array row
 
+# --- the edge record -----------------------------------------------------------------------
 
-def _ceil_div(a: int, b: int) -> int:
-    return -((-a) // b)
+
+@dataclass
+class Edge:
+    """One polygon edge: its ends in grid units, its rows, its winding, its crossing.
+
+    The edge is active for the sample rows ``bucket <= y < row_end``; `winding`
+    is +1 for an edge that runs downward in contour order, -1 for an upward one.
+    `crossing` follows the edge from row to row; it is None for a horizontal
+    edge, which crosses no sample row and is kept for topology only.
+    """
+
+    edge: int
+    contour: int
+    lower: tuple[int, int]
+    upper: tuple[int, int]
+    winding: int
+    bucket: int
+    row_end: int
+    crossing: ExactCrossing | FloatCrossing | None
+
+    @property
+    def crosses_rows(self) -> bool:
+        """Whether the edge crosses a sample row; if not, it is kept for topology only."""
+        return self.crossing is not None and self.bucket < self.row_end
 
 
 class ExactCrossing:
-    """Where an edge crosses the current sample row: x = q + r/den pixels, 0 <= r < den."""
+    """Where an edge crosses the current row, exactly: x = q + r/den pixels, 0 <= r < den.
+
+    Built from the lower end (xl, yl) and the rise (dx, dy), in grid units of
+    `scale`. The AET takes `x` and `dxdy` as Fractions; `step` and `ceil` are
+    the integer DDA for loops that walk the crossing themselves (scanline
+    visibility). Derivation: docs/scan-conversion.md, "Exact crossings".
+    """
 
     def __init__(self, xl: int, yl: int, dx: int, dy: int, scale: int) -> None:
         self.xl, self.yl, self.dx, self.dy, self.scale = xl, yl, dx, dy, scale
@@ -87,81 +117,37 @@ class ExactCrossing:
     def ceil(self) -> int:
         return self.q + (self.r > 0)
 
-    def exact(self) -> Fraction:
+    @property
+    def x(self) -> Fraction:
         return self.q + Fraction(self.r, self.den)
 
+    @property
     def dxdy(self) -> Fraction:
         return Fraction(self.dx, self.dy)
 
 
 class FloatCrossing:
-    """The textbook crossing in float32/float64: x on its first row and dx/dy, both of `dtype`.
-
-    The AET then advances x by ``x += dx/dy`` in that type (``aet_update``), so it drifts.
-    """
+    """The textbook crossing in float32/float64: `x` on the current row and `dxdy`, of `dtype`."""
 
     def __init__(self, xl: int, yl: int, dx: int, dy: int, scale: int, dtype: type) -> None:
         self.dtype = dtype
         self.xl = dtype(xl / scale)
         self.yl = dtype(yl / scale)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            slope = (dtype((xl + dx) / scale) - self.xl) / (dtype((yl + dy) / scale) - self.yl)
+            dxdy = (dtype((xl + dx) / scale) - self.xl) / (dtype((yl + dy) / scale) - self.yl)
         # Where dy rounds to 0 or dx/dy overflows, the textbook code breaks; keep x at the lower end.
-        self.slope = slope if np.isfinite(slope) else dtype(0)
+        self.dxdy = dxdy if np.isfinite(dxdy) else dtype(0)
 
     def start(self, row: int) -> None:
         with np.errstate(over="ignore"):
-            self.x = self.xl + self.slope * (self.dtype(row) - self.yl)
-
-    def ceil(self) -> int:
-        # x may have overflowed to +-inf; any value beyond +-2**40 lies far off every raster.
-        return math.ceil(min(max(float(self.x), -FLOAT_X_LIMIT), FLOAT_X_LIMIT))
-
-    def exact(self) -> None:
-        return None
-
-    def dxdy(self) -> None:
-        return None
+            self.x = self.xl + self.dxdy * (self.dtype(row) - self.yl)
 
 
-@dataclass
-class ActiveEdge:
-    """An edge of the edge table, with its crossing of the current row once active."""
-
-    edge: int
-    contour: int
-    lower: tuple[int, int]
-    upper: tuple[int, int]
-    winding: int
-    bucket: int
-    row_end: int
-    crossing: ExactCrossing | FloatCrossing | None  # None for horizontal edges
-
-    @property
-    def crosses_rows(self) -> bool:
-        """Whether the edge crosses a sample row; if not, it is kept for topology only."""
-        return self.crossing is not None and self.bucket < self.row_end
-
-
-@dataclass
-class ScanStats(RichDisplay):
-    """What one scan conversion did."""
-
-    edges: int = 0
-    kept_for_topology: int = 0
-    rows_scanned: int = 0
-    spans: int = 0
-    swaps: int = 0
-    max_active: int = 0
-    path: str = "reference"
+# --- step 1: the edge table ----------------------------------------------------------------
 
 
 class EdgeEntry(NamedTuple):
-    """An edge-table entry as `edge_table_entry` returns it, in pixels (sample rows at integer y).
-
-    The edge is active for the sample rows ``bucket <= y < row_end``; `winding`
-    is +1 for an edge that runs downward in contour order, -1 for an upward one.
-    """
+    """An edge-table entry as `edge_table_entry` returns it, in pixels (sample rows at integer y)."""
 
     lower: tuple[Fraction, Fraction]
     upper: tuple[Fraction, Fraction]
@@ -196,202 +182,75 @@ def edge_table_entry(start: tuple, end: tuple) -> EdgeEntry | None:
     return EdgeEntry(lower, upper, winding, math.ceil(lower[1]), math.ceil(upper[1]))
 
 
-def build_edge_table(snapped: SnappedPolygon, arithmetic: str = "exact") -> list[ActiveEdge]:
-    """All edges of `snapped`, in contour order, with rows and crossings set up.
-
-    Each edge's entry comes from the step ``edge_table_entry``, in pixels; it is
-    turned back into grid units exactly, and the crossing is set up from it.
-    """
+def build_edge_table(snapped: SnappedPolygon, arithmetic: str = "exact") -> list[Edge]:
+    """Every edge of `snapped` in contour order, its rows from the step ``edge_table_entry``."""
     scale = snapped.scale
-    entry_of = steps.get("edge_table_entry")
-    edges = []
+    entry_of = steps.get("edge_table_entry", scale=scale)  # a replaced one's ends: on the grid
+    edges: list[Edge] = []
     for contour in range(len(snapped.offsets) - 1):
-        first, stop = int(snapped.offsets[contour]), int(snapped.offsets[contour + 1])
-        ends = [_vertex(snapped.units[i], scale) for i in range(first, stop)]
-        for start, end in zip(ends, ends[1:] + ends[:1], strict=True):
-            entry = entry_of(start[1], end[1])
-            edges.append(_table_edge(len(edges), contour, start, end, entry, scale, arithmetic))
+        units = snapped.units[snapped.offsets[contour] : snapped.offsets[contour + 1]]
+        corners = [(int(x), int(y)) for x, y in units]
+        for start, end in zip(corners, corners[1:] + corners[:1], strict=True):
+            entry = entry_of(_pixels(start, scale), _pixels(end, scale))
+            edges.append(_edge(len(edges), contour, start, end, entry, scale, arithmetic))
     return edges
 
 
-def _vertex(row: np.ndarray, scale: int) -> tuple[tuple[int, int], tuple[Fraction, Fraction]]:
-    """A vertex in grid units and in pixels, (x, y) each."""
-    x, y = int(row[0]), int(row[1])
-    return (x, y), (Fraction(x, scale), Fraction(y, scale))
-
-
-def _table_edge(edge, contour, start, end, entry, scale: int, arithmetic: str) -> ActiveEdge:
-    """The ET edge of an ``edge_table_entry`` result, in grid units, with its crossing.
-
-    `start` and `end` are the edge's endpoints as (units, pixels) pairs.
-    """
-    if entry is None:  # not in the table (a horizontal edge): kept for topology only
-        a, b = start[0], end[0]
-        lower, upper = (a, b) if (a[1], a[0]) <= (b[1], b[0]) else (b, a)
-        row = _ceil_div(lower[1], scale)
-        return ActiveEdge(edge, contour, lower, upper, 0, row, row, None)
-    lower, upper, winding, bucket, row_end = _entry_in_units(entry, (start, end), scale)
+def _edge(index, contour, start, end, entry: EdgeEntry | None, scale, arithmetic) -> Edge:
+    """The `Edge` from `start` to `end` (grid units) with the rows and winding of its `entry`."""
+    if entry is None:  # horizontal: kept for topology, in no bucket
+        lower, upper = sorted((start, end), key=lambda point: (point[1], point[0]))
+        row = -(-lower[1] // scale)  # ceil
+        return Edge(index, contour, lower, upper, 0, row, row, None)
+    lower, upper = _units(entry.lower, scale), _units(entry.upper, scale)
     crossing = _crossing(lower, upper, scale, arithmetic)
-    return ActiveEdge(edge, contour, lower, upper, winding, bucket, row_end, crossing)
+    return Edge(index, contour, lower, upper, entry.winding, entry.bucket, entry.row_end, crossing)
 
 
-def _entry_in_units(entry: object, ends: tuple, scale: int) -> tuple:
-    """An ``edge_table_entry`` result as (lower, upper, winding, bucket, row_end), in grid units."""
-    try:
-        lower, upper, winding, bucket, row_end = entry  # type: ignore[misc]
-    except (TypeError, ValueError):
-        raise TypeError(
-            "edge_table_entry must return None or (lower, upper, winding, bucket, row_end); "
-            f"got {shown(entry)}"
-        ) from None
-    return (
-        _grid_point("lower", lower, ends, scale),
-        _grid_point("upper", upper, ends, scale),
-        _entry_int("winding", winding),
-        _entry_int("bucket", bucket),
-        _entry_int("row_end", row_end),
-    )
+def _pixels(point: tuple[int, int], scale: int) -> tuple[Fraction, Fraction]:
+    return Fraction(point[0], scale), Fraction(point[1], scale)
 
 
-def _grid_point(name: str, point: object, ends: tuple, scale: int) -> tuple[int, int]:
-    """An entry's end, (x, y) in pixels, in grid units: it must lie on the sub-pixel grid."""
-    for units, pixels in ends:
-        if type(point) is tuple and point == pixels:  # one of the edge's endpoints, as given
-            return units
-    try:
-        x, y = point  # type: ignore[misc]
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"edge_table_entry's {name!r} must be an (x, y) point; got {shown(point)}"
-        ) from None
-    return _grid_units(name, x, scale), _grid_units(name, y, scale)
-
-
-def _grid_units(name: str, value: object, scale: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"edge_table_entry's {name!r} must hold numbers; got {shown(value)}")
-    try:
-        exact = value if isinstance(value, numbers.Rational) else Fraction(float(value))
-    except (ValueError, OverflowError):  # nan, inf
-        raise ValueError(
-            f"edge_table_entry's {name!r} must be finite; got {shown(value)}"
-        ) from None
-    units, rest = divmod(int(exact.numerator) * scale, int(exact.denominator))
-    if rest:
-        raise ValueError(
-            f"edge_table_entry's {name!r} has {shown(value)}, off the 1/{scale} pixel grid "
-            "of the vertices: the entry's ends must be the edge's endpoints"
-        )
-    return units
-
-
-def _entry_int(name: str, value: object) -> int:
-    if type(value) is int:
-        return value
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"edge_table_entry's {name!r} must be an int; got {shown(value)}")
-    return int(value)
+def _units(point: tuple, scale: int) -> tuple[int, int]:
+    return int(point[0] * scale), int(point[1] * scale)
 
 
 def _crossing(lower, upper, scale: int, arithmetic: str) -> ExactCrossing | FloatCrossing | None:
     """The crossing of the line through two grid points, from the lower one; None if horizontal."""
-    if upper[1] < lower[1]:
-        lower, upper = upper, lower  # an entry with its ends swapped: the same line
-    dx, dy = upper[0] - lower[0], upper[1] - lower[1]
-    if dy == 0:
+    (xl, yl), (xu, yu) = sorted((lower, upper), key=lambda point: point[1])
+    if yu == yl:
         return None
     if arithmetic == "exact":
-        return ExactCrossing(lower[0], lower[1], dx, dy, scale)
-    return FloatCrossing(lower[0], lower[1], dx, dy, scale, getattr(np, arithmetic))
+        return ExactCrossing(xl, yl, xu - xl, yu - yl, scale)
+    return FloatCrossing(xl, yl, xu - xl, yu - yl, scale, getattr(np, arithmetic))
 
 
-def _crossing_value(crossing: ExactCrossing | FloatCrossing) -> Fraction | np.floating:
-    """The crossing's x on its current row as the AET holds it: a Fraction, or a numpy float."""
-    exact = crossing.exact()
-    return crossing.x if exact is None else exact
+class EdgeTable(NamedTuple):
+    """The edge table: every edge (in contour order), and those that cross raster rows by first row."""
+
+    edges: list[Edge]
+    buckets: dict[int, list[Edge]]
 
 
-def _x_values(x: object, offset: Fraction) -> tuple[float, Fraction | None]:
-    """(x, x_exact) of an AET x in the caller's frame: exact for ints and Fractions, else a float."""
-    if isinstance(x, int | Fraction) and not isinstance(x, bool):
-        exact = x + offset
-        return float(exact), exact
-    return float(x) + float(offset), None  # type: ignore[arg-type]
+def bucketed_edge_table(
+    snapped: SnappedPolygon, height: int, arithmetic: str = "exact", trace=None, polygon: int = 0
+) -> EdgeTable:
+    """The edge table (traced as ``edge_table_built``) and its edges by the first raster row they cross.
 
-
-def _slope_values(crossing) -> tuple[float, Fraction | None]:
-    """(dxdy, dxdy_exact) of a crossing."""
-    exact = crossing.dxdy()
-    return (float(crossing.slope), None) if exact is None else (_saturating_float(exact), exact)
-
-
-def _saturating_float(value: Fraction) -> float:
-    """`value` as a float, +-inf past the float range (dx/dy of near-horizontal subnormal edges)."""
-    try:
-        return float(value)
-    except OverflowError:
-        return math.inf if value > 0 else -math.inf
-
-
-def _edge_record(edge: ActiveEdge, snapped: SnappedPolygon) -> EdgeRecord:
-    px = snapped.to_pixels
-    if edge.crosses_rows:
-        edge.crossing.start(edge.bucket)
-        x, x_exact = _x_values(_crossing_value(edge.crossing), px(0))
-        dxdy, dxdy_exact = _slope_values(edge.crossing)
-    else:  # crosses no sample row: no crossing to show, so show the lower endpoint
-        x, x_exact, dxdy, dxdy_exact = float(px(edge.lower[0])), px(edge.lower[0]), 0.0, None
-        if edge.crossing is not None:
-            dxdy, dxdy_exact = _slope_values(edge.crossing)
-    return EdgeRecord(
-        edge=edge.edge,
-        contour=edge.contour,
-        x0=float(px(edge.lower[0])),
-        y0=float(px(edge.lower[1])),
-        x1=float(px(edge.upper[0])),
-        y1=float(px(edge.upper[1])),
-        ymin=float(px(edge.lower[1])),
-        ymax=float(px(edge.upper[1])),
-        bucket=edge.bucket,
-        row_end=edge.row_end,
-        x=x,
-        x_exact=x_exact,
-        dxdy=dxdy,
-        dxdy_exact=dxdy_exact,
-        winding=edge.winding,
-        horizontal=edge.crossing is None,
-        kept_for_topology=not edge.crosses_rows,
-    )
-
-
-def _aet_entry(edge: ActiveEdge, snapped: SnappedPolygon, x: object) -> AetEntry:
-    """The trace record of an active edge whose AET x is `x`."""
-    x_float, x_exact = _x_values(x, snapped.to_pixels(0))
-    dxdy, dxdy_exact = _slope_values(edge.crossing)
-    return AetEntry(
-        edge=edge.edge,
-        x=x_float,
-        x_exact=x_exact,
-        dxdy=dxdy,
-        dxdy_exact=dxdy_exact,
-        ymax=float(snapped.to_pixels(edge.upper[1])),
-        winding=edge.winding,
-    )
-
-
-def _insertion_sort(items: list, before) -> int:
-    """Sort `items` in place, as the notes' bubble sort does; return the swaps made.
-
-    ``before(a, b)`` says whether `a` goes strictly before `b`. Ties keep their order.
+    Rows below the raster are never scanned: an edge starting there enters at row 0.
     """
-    swaps = 0
-    for i in range(1, len(items)):
-        j = i
-        while j > 0 and before(items[j], items[j - 1]):
-            items[j - 1], items[j] = items[j], items[j - 1]
-            swaps += 1
-            j -= 1
-    return swaps
+    edges = build_edge_table(snapped, arithmetic)
+    if trace is not None and trace.wants("edge_table_built", polygon=polygon):
+        trace.emit(EdgeTableBuilt(polygon, tuple(_edge_record(e, snapped) for e in edges)))
+    buckets: dict[int, list[Edge]] = {}
+    for edge in edges:
+        row_start = max(edge.bucket, 0)
+        if edge.crossing is not None and row_start < min(edge.row_end, height):
+            buckets.setdefault(row_start, []).append(edge)
+    return EdgeTable(edges, buckets)
+
+
+# --- step 2: the active edge table, row by row ---------------------------------------------
 
 
 @dataclass(slots=True)
@@ -442,92 +301,22 @@ def aet_update(active: list[AetItem], y: int, entering: list[AetItem]) -> tuple[
     return retired, aet
 
 
-def _entering_item(edge: ActiveEdge, y: int) -> AetItem:
-    """An edge entering the AET on row `y`, its x where it crosses that row (the crossing setup)."""
-    crossing = edge.crossing
-    crossing.start(y)
-    exact_slope = crossing.dxdy()
-    dxdy = crossing.slope if exact_slope is None else exact_slope
-    return AetItem(
-        edge.edge, _crossing_value(crossing), dxdy, edge.bucket, edge.row_end, edge.winding
-    )
+def _insertion_sort(items: list, before) -> int:
+    """Sort `items` in place, as the notes' bubble sort does; return the swaps made.
 
-
-def _update_aet(aet: list[AetItem], y: int, waiting: list[ActiveEdge], edges, arithmetic: str):
-    """Row y's AET from the step ``aet_update``: (retired, entered, aet, swaps).
-
-    `retired` and `entered` are the ET edges it retired and took in; `swaps` is
-    the number of exchanges an insertion sort makes from the order before the
-    update (the previous AET, then the entering edges) to the order it returned.
-    A replaced step's result is checked first.
+    ``before(a, b)`` says whether `a` goes strictly before `b`. Ties keep their order.
     """
-    offered = [_entering_item(edge, y) for edge in waiting]
-    before = [item.edge for item in aet + offered]
-    count = len(aet)
-    update = steps.get("aet_update")
-    if arithmetic == "exact":
-        returned = update(aet, y, offered)
-    else:
-        with np.errstate(over="ignore"):  # float x may overflow to +-inf, as the textbook's does
-            returned = update(aet, y, offered)
-    if update is aet_update:
-        retired, updated = [item.edge for item in returned[0]], returned[1]
-    else:
-        retired, updated = _checked_update(returned, before[:count], before[count:], y)
-    after = [item.edge for item in updated]
-    swaps = 0 if after == before else _exchanges(before, after)
-    taken = set(after) if offered else set()
-    entered = [edges[edge] for edge in before[count:] if edge in taken]
-    return [edges[edge] for edge in retired], entered, updated, swaps
+    swaps = 0
+    for i in range(1, len(items)):
+        j = i
+        while j > 0 and before(items[j], items[j - 1]):
+            items[j - 1], items[j] = items[j], items[j - 1]
+            swaps += 1
+            j -= 1
+    return swaps
 
 
-def _exchanges(before: list[int], after: list[int]) -> int:
-    """The swaps an insertion sort makes to put the ids of `after` from their order in `before`."""
-    order = {edge: k for k, edge in enumerate(before)}
-    return _insertion_sort([order[edge] for edge in after], operator.lt)
-
-
-def _checked_update(returned: object, previous: list[int], entering: list[int], y: int):
-    """What ``aet_update`` returned, as (retired edge ids, AET items), or a clear error."""
-    try:
-        retired, updated = returned  # type: ignore[misc]
-        retired, updated = list(retired), list(updated)
-    except (TypeError, ValueError):
-        raise TypeError(
-            "aet_update must return (retired, active): two lists of AET items; "
-            f"got {shown(returned)}"
-        ) from None
-    retired_ids = [_item_edge(item, y) for item in retired]
-    seen: set[int] = set()
-    known = set(previous) | set(entering)
-    for edge in retired_ids + [_item_edge(item, y, with_x=True) for item in updated]:
-        if edge not in known:
-            raise ValueError(
-                f"aet_update returned edge {edge} on row {y}; it is neither active nor entering"
-            )
-        if edge in seen:
-            raise ValueError(f"aet_update returned edge {edge} twice on row {y}")
-        seen.add(edge)
-    dropped = [edge for edge in previous if edge not in seen]
-    if dropped:
-        raise ValueError(
-            f"aet_update dropped edge {dropped[0]} on row {y}: an active edge leaves the AET "
-            "only by being retired"
-        )
-    return retired_ids, updated
-
-
-def _item_edge(item: object, y: int, with_x: bool = False) -> int:
-    """The edge id of an AET item ``aet_update`` returned (whose x must be a number if `with_x`)."""
-    edge = getattr(item, "edge", None)
-    if isinstance(edge, bool) or not isinstance(edge, int):
-        raise TypeError(
-            f"aet_update must return AET items (with .edge and .x) on row {y}; got {shown(item)}"
-        )
-    x = getattr(item, "x", None)
-    if with_x and (isinstance(x, bool) or not isinstance(x, numbers.Real)):
-        raise TypeError(f"aet_update returned edge {edge} with x = {shown(x)} on row {y}")
-    return edge
+# --- step 3: the spans ---------------------------------------------------------------------
 
 
 @steps.step(
@@ -549,61 +338,22 @@ def span_rule(crossings: list[tuple], rule: str) -> list[tuple[int, int, int]]:
     return spans
 
 
-def _span_x(x: object) -> Fraction | float:
-    """An AET x as `span_rule` takes it (floats clamped where they lie far off the raster)."""
-    if isinstance(x, int | Fraction):
-        return x
-    return min(max(float(x), -FLOAT_X_LIMIT), FLOAT_X_LIMIT)  # type: ignore[arg-type]
-
-
-def _row_spans(crossings: list[tuple], rule: str, width: int) -> list[tuple[int, int, int]]:
-    """(x_start, x_end, winding) of the inside runs of one row's (x, winding), clipped to the raster."""
-    clipped = [
-        (max(start, 0), min(end, width), winding)
-        for start, end, winding in steps.get("span_rule")(
-            [(_span_x(x), winding) for x, winding in crossings], rule
-        )
-    ]
-    return [span for span in clipped if span[0] < span[1]]
-
-
-class EdgeTable(NamedTuple):
-    """The edge table: every edge (in contour order), and those that cross raster rows by first row."""
-
-    edges: list[ActiveEdge]
-    buckets: dict[int, list[ActiveEdge]]
-
-
-def bucketed_edge_table(
-    snapped: SnappedPolygon, height: int, arithmetic: str = "exact", trace=None, polygon: int = 0
-) -> EdgeTable:
-    """The edge table (traced as ``edge_table_built``) and its edges by the first raster row they cross.
-
-    Rows below the raster are never scanned: an edge starting there enters at row 0.
-    """
-    edges = build_edge_table(snapped, arithmetic)
-    if trace is not None and trace.wants("edge_table_built", polygon=polygon):
-        trace.emit(EdgeTableBuilt(polygon, tuple(_edge_record(e, snapped) for e in edges)))
-    buckets: dict[int, list[ActiveEdge]] = {}
-    for edge in edges:
-        row_start = max(edge.bucket, 0)
-        if edge.crossing is not None and row_start < min(edge.row_end, height):
-            buckets.setdefault(row_start, []).append(edge)
-    return EdgeTable(edges, buckets)
+# --- the walk: steps 2 and 3, row by row ---------------------------------------------------
 
 
 class ScanRow(NamedTuple):
     """One scanned row of the ET/AET walk.
 
-    `retired` and `entering` are the ET edges ``aet_update`` retired and took
-    in on row `y`; `aet` is the row's AET as it returned it (the reference
-    sorts it by x), and `swaps` the exchanges its re-sort made; `spans` are
+    `retired` and `entering` are the edges ``aet_update`` retired and took in
+    on row `y`; `aet` is the row's AET as it returned it (the reference sorts
+    it by x), and `swaps` the exchanges from the previous order (the previous
+    AET, then the entering edges in edge order) to it; `spans` are
     ``span_rule``'s (x_start, x_end, winding), clipped to the raster.
     """
 
     y: int
-    retired: list[ActiveEdge]
-    entering: list[ActiveEdge]
+    retired: list[Edge]
+    entering: list[Edge]
     aet: list[AetItem]
     swaps: int
     spans: list[tuple[int, int, int]]
@@ -626,7 +376,7 @@ def scan_rows(
     makes each row's AET and ``span_rule`` cuts its spans, so a replaced step
     drives every traced loop built on this walk. `table` is
     `bucketed_edge_table`'s, built with the same `arithmetic`. Rows from the
-    first bucket up are scanned until the AET empties; empty rows are skipped.
+    first bucket up are scanned while an edge is active or due; others are skipped.
 
     Examples
     --------
@@ -640,28 +390,72 @@ def scan_rows(
     2 [] []
     """
     edges, buckets = table
+    update = steps.get("aet_update")
+    rows = sorted(buckets, reverse=True)  # the buckets' rows, the next one last
     aet: list[AetItem] = []
-    waiting: list[ActiveEdge] = []  # entering edges `aet_update` did not take (none by default)
-    pending = sorted(buckets)
-    y = pending[0] if pending else height
-    while y < height and (aet or waiting or pending):
-        if not aet and not waiting and pending[0] > y:
-            y = pending[0]  # skip empty rows
-            if y >= height:
-                break
-        if pending and pending[0] == y:
-            waiting += buckets[pending.pop(0)]
-        retired, entering, aet, swaps = _update_aet(aet, y, waiting, edges, arithmetic)
-        if waiting:
-            gone = {e.edge for e in entering + retired}  # out of the ET: into the AET or retired
-            waiting = [e for e in waiting if e.edge not in gone]
+    due_until = 0  # below this row, an edge of a bucket reached is due (active, or to be taken in)
+    y = rows[-1] if rows else height
+    while y < height:
+        bucket = buckets[rows.pop()] if rows and rows[-1] == y else []
+        due_until = max([due_until] + [edge.row_end for edge in bucket])
+        previous = [item.edge for item in aet]
+        with np.errstate(over="ignore"):  # float x may overflow to +-inf, as the textbook's does
+            retired, aet = update(aet, y, [_aet_item(edge, y) for edge in bucket])
+        entering = sorted({item.edge for item in aet}.difference(previous))
+        swaps = _exchanges(previous + entering, [item.edge for item in aet])
         # An empty AET has no spans: the span rule is not asked (one call per aet_sorted event).
-        spans = _row_spans([(i.x, edges[i.edge].winding) for i in aet], rule, width) if aet else []
-        row = ScanRow(y, retired, entering, aet, swaps, spans)
+        spans = _row_spans(aet, edges, rule, width) if aet else []
+        retired_edges = [edges[item.edge] for item in retired]
+        row = ScanRow(y, retired_edges, [edges[e] for e in entering], aet, swaps, spans)
         if trace is not None:
             _emit_row(trace, polygon, row, edges, snapped)
         yield row
         y += 1
+        if not aet and y >= due_until:  # no edge active or due: skip to the next bucket
+            y = rows[-1] if rows else height
+
+
+def _aet_item(edge: Edge, y: int) -> AetItem:
+    """An edge entering the AET on row `y`, with x where it crosses that row."""
+    crossing = edge.crossing
+    crossing.start(y)
+    return AetItem(edge.edge, crossing.x, crossing.dxdy, edge.bucket, edge.row_end, edge.winding)
+
+
+def _exchanges(before: list[int], after: list[int]) -> int:
+    """The swaps an insertion sort makes to put the ids of `after` from their order in `before`."""
+    if after == before:
+        return 0
+    order = {edge: k for k, edge in enumerate(before)}
+    return _insertion_sort([order[edge] for edge in after], operator.lt)
+
+
+def _row_spans(aet: list[AetItem], edges: list[Edge], rule: str, width: int) -> list[tuple]:
+    """``span_rule``'s (x_start, x_end, winding) of one row's AET, clipped to the raster."""
+    crossings = [(_span_x(item.x), edges[item.edge].winding) for item in aet]
+    spans = steps.get("span_rule")(crossings, rule)
+    clipped = [(max(start, 0), min(end, width), winding) for start, end, winding in spans]
+    return [span for span in clipped if span[0] < span[1]]
+
+
+def _span_x(x: Fraction | float) -> Fraction | float:
+    """An exact x as it is; a float x clamped where it lies far off the raster (it may be +-inf)."""
+    if isinstance(x, int | Fraction):
+        return x
+    return min(max(float(x), -FLOAT_X_LIMIT), FLOAT_X_LIMIT)
+
+
+@dataclass
+class ScanStats(RichDisplay):
+    """What one scan conversion did."""
+
+    edges: int = 0
+    kept_for_topology: int = 0
+    rows_scanned: int = 0
+    spans: int = 0
+    swaps: int = 0
+    max_active: int = 0
+    path: str = "reference"
 
 
 def scan_reference(
@@ -686,17 +480,8 @@ def scan_reference(
     edges = table.edges
     stats = ScanStats(edges=len(edges), kept_for_topology=sum(not e.crosses_rows for e in edges))
     spans: list[tuple[int, int, int]] = []
-    walk = scan_rows(
-        snapped,
-        table,
-        width,
-        height,
-        rule=rule,
-        arithmetic=arithmetic,
-        trace=trace,
-        polygon=polygon,
-    )
-    for row in walk:
+    options = {"rule": rule, "arithmetic": arithmetic, "trace": trace, "polygon": polygon}
+    for row in scan_rows(snapped, table, width, height, **options):
         stats.rows_scanned += 1
         stats.swaps += row.swaps
         stats.max_active = max(stats.max_active, len(row.aet))
@@ -710,7 +495,10 @@ def scan_reference(
     return np.array(spans, dtype=np.int64).reshape(-1, 3), stats
 
 
-def _emit_row(trace, polygon: int, row: ScanRow, edges: list[ActiveEdge], snapped) -> None:
+# --- trace records, built from the edges at emit time --------------------------------------
+
+
+def _emit_row(trace, polygon: int, row: ScanRow, edges: list[Edge], snapped) -> None:
     """The events of one scanned row, the AET entries showing the x that ``aet_update`` returned."""
     y = row.y
     if row.retired and trace.wants("edges_retired", polygon=polygon, y=y):
@@ -723,3 +511,61 @@ def _emit_row(trace, polygon: int, row: ScanRow, edges: list[ActiveEdge], snappe
     if trace.wants("span", polygon=polygon, y=y):
         for start, end, winding in row.spans:
             trace.emit(Span(polygon, y, start, end, winding))
+
+
+def _edge_record(edge: Edge, snapped: SnappedPolygon) -> EdgeRecord:
+    """The trace record of an ET edge, x where it crosses its bucket row (else its lower end)."""
+    (x0, y0), (x1, y1) = [[snapped.to_pixels(u) for u in end] for end in (edge.lower, edge.upper)]
+    crossing = edge.crossing
+    if edge.crosses_rows:
+        crossing.start(edge.bucket)
+        x, x_exact = _float_and_exact(crossing.x, snapped.to_pixels(0))
+    else:  # crosses no sample row: no crossing to show, so show the lower end
+        x, x_exact = float(x0), x0
+    dxdy, dxdy_exact = (0.0, None) if crossing is None else _float_and_exact(crossing.dxdy)
+    return EdgeRecord(
+        edge=edge.edge,
+        contour=edge.contour,
+        x0=float(x0),
+        y0=float(y0),
+        x1=float(x1),
+        y1=float(y1),
+        ymin=float(y0),
+        ymax=float(y1),
+        bucket=edge.bucket,
+        row_end=edge.row_end,
+        x=x,
+        x_exact=x_exact,
+        dxdy=dxdy,
+        dxdy_exact=dxdy_exact,
+        winding=edge.winding,
+        horizontal=crossing is None,
+        kept_for_topology=not edge.crosses_rows,
+    )
+
+
+def _aet_entry(edge: Edge, snapped: SnappedPolygon, x: object) -> AetEntry:
+    """The trace record of an active edge whose AET x is `x`."""
+    x_float, x_exact = _float_and_exact(x, snapped.to_pixels(0))
+    dxdy, dxdy_exact = _float_and_exact(edge.crossing.dxdy)
+    return AetEntry(
+        edge=edge.edge,
+        x=x_float,
+        x_exact=x_exact,
+        dxdy=dxdy,
+        dxdy_exact=dxdy_exact,
+        ymax=float(snapped.to_pixels(edge.upper[1])),
+        winding=edge.winding,
+    )
+
+
+def _float_and_exact(value, offset: Fraction | None = None) -> tuple[float, Fraction | None]:
+    """(float, exact) of an x or dx/dy plus `offset` (into the caller's frame); exact is None
+    for a float x. Past the float range the float is +-inf (dx/dy of a near-horizontal edge)."""
+    if isinstance(value, int | Fraction) and not isinstance(value, bool):
+        exact = value if offset is None else value + offset
+        try:
+            return float(exact), exact
+        except OverflowError:
+            return (math.inf if exact > 0 else -math.inf), exact
+    return (float(value) if offset is None else float(value) + float(offset)), None

@@ -1,8 +1,9 @@
-"""One ET/AET walk: `scan_rows` drives scan conversion and the traced z-buffer alike.
+"""One ET/AET walk: `scan_rows` drives scan conversion, the traced z-buffer and mask buffer.
 
-Regression for issue 24: the traced z-buffer walked its own AET, so a replaced
-``aet_update`` or ``span_rule`` was silently not used there. Now a replaced step
-shows in the z-buffer's spans and depth tests as it does in `scan_convert`'s.
+Regression for issue 24: the traced z-buffer and the mask buffer walked their
+own AETs, so a replaced ``aet_update`` or ``span_rule`` was silently not used
+there. Now a replaced step shows in the z-buffer's spans and depth tests, and
+in the mask buffer's masks, as it does in `scan_convert`'s.
 """
 
 import dataclasses
@@ -11,6 +12,7 @@ import numpy as np
 import pytest
 
 from scanviz import Polygon, scan_convert, steps
+from scanviz.abuffer.masks import mask_buffer_rows, pixel_masks
 from scanviz.raster.fixed import snap
 from scanviz.raster.interpolate import interpolate_rows, polygon_plane
 from scanviz.raster.scanline import (
@@ -127,3 +129,23 @@ def test_scan_convert_and_the_zbuffer_see_the_same_replaced_span_rule():
     assert [(e.y, e.x_start, e.x_end) for e in scanned.of_kind("span")] == [
         (y, s, e) for p, y, s, e in _spans(zbuffered) if p == 0
     ]
+
+
+def test_a_replaced_aet_update_moves_the_mask_buffers_edges():
+    def shifted(active, y, entering):  # every edge enters one sub-sample column right
+        return aet_update(active, y, [dataclasses.replace(e, x=e.x + 1) for e in entering])
+
+    triangle = [(0.5, 0.5), (3.25, 1.0), (1.0, 2.75)]
+    with steps.using(aet_update=shifted):
+        moved = mask_buffer_rows(triangle, 5, 4, mask="4x4")
+    expected = pixel_masks([(x + 0.25, y) for x, y in triangle], 5, 4, mask="4x4")
+    assert (moved.ys.tolist(), moved.xs.tolist()) == (expected.ys.tolist(), expected.xs.tolist())
+    assert moved.masks.tolist() == expected.masks.tolist()
+    assert moved.masks.tolist() != mask_buffer_rows(triangle, 5, 4, mask="4x4").masks.tolist()
+
+
+def test_the_mask_buffers_active_edges_cover_a_sub_row_of_their_row():
+    # Edge 0, (-1, -2)-(3, -1), lies wholly below the raster: it is active on no row.
+    trace = mask_buffer_rows([(-1, -2), (3, -1), (2, 2.5)], 4, 3, mask="4x4").trace
+    first = trace.of_kind("mask_buffer_row")[0]
+    assert (first.y, first.active) == (0, (1, 2))

@@ -38,18 +38,6 @@ def test_the_reference_steps_plugged_in_give_the_default_trace(arithmetic):
         assert run() == default
 
 
-def test_an_entry_may_be_a_plain_tuple_of_lists_and_floats():
-    def plain(start, end):
-        entry = edge_table_entry(start, end)
-        return (
-            None
-            if entry is None
-            else ([float(v) for v in entry.lower], list(entry.upper), *entry[2:])
-        )
-
-    assert _trace(edge_table_entry=plain) == _trace()
-
-
 def test_an_entrys_rows_decide_when_the_edge_is_active():
     # Edge 3 is the vertical (12, 8)-(12, 1), rows 1..7; an entry saying rows 3..5 drives the loop.
     def short(start, end):
@@ -62,19 +50,6 @@ def test_an_entrys_rows_decide_when_the_edge_is_active():
     assert activated == {1: [0], 3: [3], 5: [1, 2]}
     assert retired[6] == [3]
     assert trace.of_kind("edge_table_built")[0].edges[3].bucket == 3
-
-
-def test_an_edge_left_out_enters_on_the_next_row_at_that_rows_x():
-    # Taking entering edges one row late: edge 0 enters on row 2 at x = 4 - 3/10 = 37/10.
-    def late(active, y, entering):
-        return aet_update(active, y, [e for e in entering if e.bucket < y])
-
-    trace = _trace(aet_update=late)
-    assert [(e.y, list(e.edges)) for e in trace.of_kind("edges_activated")] == [
-        (2, [0, 3]),
-        (6, [1, 2]),
-    ]
-    assert _aet_x(trace, 2) == [F(37, 10), 12]
 
 
 def test_the_trace_shows_the_x_the_step_returns():
@@ -101,52 +76,8 @@ def test_swaps_count_the_exchanges_from_the_previous_order_to_the_returned_one()
     assert _trace().of_kind("aet_sorted")[0].swaps == 0
 
 
-@pytest.mark.parametrize(
-    ("entry", "error", "message"),
-    [
-        (lambda s, e: (s, e), TypeError, "must return None or (lower, upper, winding, bucket"),
-        (
-            lambda s, e: ((s[0] + F(1, 1024), s[1]), e, 1, 0, 9),
-            ValueError,
-            "off the 1/512 pixel grid",
-        ),
-        (lambda s, e: (s, e, 1.0, 0, 9), TypeError, "'winding' must be an int; got 1.0 (float)"),
-        (lambda s, e: ("s", e, 1, 0, 9), TypeError, "'lower' must be an (x, y) point"),
-    ],
-)
-def test_a_bad_entry_is_a_clear_error(entry, error, message):
-    with pytest.raises(error, match=message.replace("(", r"\(").replace(")", r"\)")):
-        _trace(edge_table_entry=entry)
-
-
-@pytest.mark.parametrize(
-    ("update", "error", "message"),
-    [
-        (lambda a, y, e: a + e, TypeError, "must return (retired, active)"),
-        (lambda a, y, e: ([], e), ValueError, "dropped edge 0 on row 2"),
-        (lambda a, y, e: ([], a + e + a), ValueError, "returned edge 0 twice on row 2"),
-        (lambda a, y, e: ([], [1, 2]), TypeError, "must return AET items (with .edge and .x)"),
-    ],
-)
-def test_a_bad_aet_update_is_a_clear_error(update, error, message):
-    with pytest.raises(error, match=message.replace("(", r"\(").replace(")", r"\)")):
-        _trace(aet_update=update)
-
-
 def test_a_replaced_step_runs_the_reference_without_a_tracer():
     with steps.using(aet_update=lambda a, y, e: aet_update(a, y, e)):
         result = scan_convert(UMBC.polygon, UMBC.width, UMBC.height)
     assert result.stats.path == "reference"
     assert (result.mask == scan_convert(UMBC.polygon, UMBC.width, UMBC.height).mask).all()
-
-
-def test_an_entering_edge_the_step_retires_leaves_the_edge_table():
-    def refuse(active, y, entering):
-        return list(entering), []
-
-    trace = _trace(aet_update=refuse)
-    assert [(e.y, list(e.edges)) for e in trace.of_kind("edges_retired")] == [
-        (1, [0, 3]),
-        (5, [1, 2]),
-    ]
-    assert not trace.of_kind("aet_sorted") and not trace.of_kind("span")
