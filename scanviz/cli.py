@@ -684,6 +684,7 @@ def _cmd_exercises_autograde(args: argparse.Namespace) -> None:
 
 
 def _add_exercise_commands(commands) -> None:
+    """The teacher's commands (exercises ...) and the grading ones (check, grade)."""
     exercises = commands.add_parser(
         "exercises", help="the exercise catalog: list it, release notebooks, make a course key"
     )
@@ -700,6 +701,13 @@ def _add_exercise_commands(commands) -> None:
         "--with-solutions", action="store_true", help="the teacher's solved copies instead"
     )
     release.set_defaults(run=_cmd_exercises_release)
+    _add_key_commands(what)
+    _add_platform_commands(what)
+    _add_grading_commands(commands)
+
+
+def _add_key_commands(what) -> None:
+    """exercises key new: a course key with a fresh secret."""
     key = what.add_parser("key", help="course keys: key new KEY.toml").add_subparsers(
         dest="key_command", required=True, metavar="new"
     )
@@ -712,6 +720,10 @@ def _add_exercise_commands(commands) -> None:
         help="the assignment's exercises (default: all of them)",
     )
     new.set_defaults(run=_cmd_exercises_key_new)
+
+
+def _add_platform_commands(what) -> None:
+    """exercises gradescope|prairielearn|autograde: a course key on a grading platform."""
     gradescope = what.add_parser(
         "gradescope", help="build a Gradescope autograder zip for a course key"
     )
@@ -733,6 +745,10 @@ def _add_exercise_commands(commands) -> None:
     autograde.add_argument("-o", "--output", dest="out", required=True, metavar="RESULTS.json")
     autograde.add_argument("--jail", default="auto", choices=["auto", "bwrap", "user", "none"])
     autograde.set_defaults(run=_cmd_exercises_autograde)
+
+
+def _add_grading_commands(commands) -> None:
+    """check (a student's notebook) and grade (a class's folder)."""
     check = commands.add_parser(
         "check", help="a student's check: the public cases of a notebook's answers"
     )

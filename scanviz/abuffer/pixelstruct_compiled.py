@@ -287,15 +287,7 @@ def _insert_run(first, stop, hook, pixels, table, lists, full, stats, head, afte
                 partial_left, partial_right,
             )  # fmt: skip
             if partner >= 0:  # combine: unlink the partner, reinsert it as the merged fragment
-                root[p] = _remove(root[p], partner, zkey, seq, priority, left, right, hook)
-                partial_root[p] = _remove(
-                    partial_root[p], partner, bits, seq, priority, partial_left, partial_right, hook
-                )
-                length[p] -= 1
-                combine(table, partner, incoming)
-                slot = partner
-                seq[slot], zkey[slot] = incoming, zmin[slot]
-                bits[slot] = objects[slot] * 128.0 + popcount(mask[slot])
+                slot = _combine_into(p, partner, incoming, table, lists, hook)
                 stats[MERGED] += 1
         last = hider[p]
         if last >= 0 and zmin[slot] >= zkey[last]:  # lands behind a complete opaque fragment
@@ -324,6 +316,30 @@ def _insert_run(first, stop, hook, pixels, table, lists, full, stats, head, afte
                     partial_root[p], slot, bits, seq, priority, partial_left, partial_right, hook
                 )
         stats[LONGEST] = max(stats[LONGEST], length[p])
+    _link_lists(first, stop, pixels, lists, stack, dropped, head, after)
+
+
+@njit(cache=True, inline="always")
+def _combine_into(p, partner, incoming, table, lists, hook):
+    """Unlink `partner` from pixel p's treaps and combine `incoming` into it: the slot to insert."""
+    zmin, mask, objects = table[0], table[3], table[6]
+    root, partial_root, _, length, seq, bits, left, right = lists[:8]
+    partial_left, partial_right, zkey, priority = lists[8:]
+    root[p] = _remove(root[p], partner, zkey, seq, priority, left, right, hook)
+    partial_root[p] = _remove(
+        partial_root[p], partner, bits, seq, priority, partial_left, partial_right, hook
+    )
+    length[p] -= 1
+    combine(table, partner, incoming)
+    seq[partner], zkey[partner] = incoming, zmin[partner]
+    bits[partner] = objects[partner] * 128.0 + popcount(mask[partner])
+    return partner
+
+
+@njit(cache=True)
+def _link_lists(first, stop, pixels, lists, stack, dropped, head, after):
+    """Link each pixel's treap of fragments first..stop - 1 in key order into `head`/`after`."""
+    root, left, right = lists[0], lists[6], lists[7]
     for i in range(first, stop):  # each pixel once, at its first fragment
         if i > first and pixels[i] == pixels[i - 1]:
             continue

@@ -70,11 +70,6 @@ def _formatter(*values: object) -> ExerciseFormatter:
     return ExerciseFormatter(next((mask_layout(v) for v in values if mask_layout(v)), None))
 
 
-def value_html(value: object, name: str = "") -> str:
-    """One value as a student reads it (a table for a record, a summary for a long list)."""
-    return _formatter(value).html(value, name)
-
-
 def _records(value: object) -> list[dict] | None:
     if not isinstance(value, list | tuple) or not value:
         return None

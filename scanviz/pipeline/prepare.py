@@ -171,90 +171,95 @@ def prepare(
     """Cull, transform and clip every object; return the screen polygons the z-buffer draws."""
     clip_from_world = clip_from_eye(scene.camera) @ eye_from_world(scene.camera)
     stats = RenderStats(objects=len(scene.objects))
-    rows = {"screen": [], "values": [], "sizes": [], "flat": [], "object": [], "opacity": []}
+    rows = []  # per batch of polygons: (screen, values, sizes, flat, object, opacity)
     cull_ran = False
     for index, obj in enumerate(scene.objects):
         o = _object_in_world(obj)
-        world, faces, sizes, corners = o.world, o.faces, o.sizes, o.corners
-        stats.polygons_in += len(faces)
+        stats.polygons_in += len(o.faces)
         if tracer is not None:
             from ..transform import transform_vertices
 
-            transform_vertices(scene.camera, world, width, height, trace=tracer, object=index)
-        clip, codes, finite = clip_coordinates(world, clip_from_world)
+            transform_vertices(scene.camera, o.world, width, height, trace=tracer, object=index)
+        clip, codes, finite = clip_coordinates(o.world, clip_from_world)
         _check_vertices("positions (clip space)", ~finite, np.full(len(clip), index), "finite")
-        keep = np.ones(len(faces), bool)
         # Back faces of a transparent object show through it where the visibility can show them.
         see_through = transparent_visible and not obj.material.opaque
-        if (obj.mesh.closed and not see_through) if cull is None else cull:
+        culling = (obj.mesh.closed and not see_through) if cull is None else cull
+        if culling:
             cull_ran = True
-            culled, _ = cull_faces(scene.camera, world, o.flat_faces, trace=tracer)
-            keep &= ~culled
-            stats.culled += int(culled.sum())
-        verdict = face_verdicts(codes, corners, o.flat_faces.starts)
-        verdict[~keep] = CULLED
-        accepted = verdict == ACCEPT
-        everything = bool(accepted.all())  # the common case: no array needs picking from
-        stats.off_screen += int((verdict == REJECT).sum())
-        stats.accepted += int(accepted.sum())
-        # Attributes per corner, by shading model.
-        if shading == "gouraud" and o.vertex_normals is not None:  # each vertex lit once
-            values = _lit(scene, world, o.vertex_normals, o.palette[o.vertex_material])[corners]
-            stats.shaded_vertices += len(world)
-        elif shading == "gouraud":  # corners of one vertex differ: each corner lit
-            values = _lit(scene, world[corners], o.corner_normals, o.palette[o.corner_material])
-            stats.shaded_vertices += len(values)
-        elif shading in ("phong", "gooch", "fast_phong"):
-            values = o.corner_surface()
-        else:
-            values = np.zeros((len(corners), 0))
-        flat = np.zeros((len(faces), 3 if shading == "flat" else 0))
-        if shading == "flat" and len(faces):
-            flat = _lit(scene, o.centroids, o.face_normals, o.palette[o.face_material])
-
-        corner_keep = slice(None) if everything else np.repeat(accepted, sizes)
-        face_keep = slice(None) if everything else accepted
-        rows["screen"].append(screen_vertices(clip, corners[corner_keep], width, height))
-        rows["values"].append(values[corner_keep])
-        rows["sizes"].append(sizes[face_keep])
-        rows["flat"].append(flat[face_keep])
+        verdict = _verdicts(scene.camera, o, codes, culling, tracer, stats)
+        values, flat = _attributes(scene, o, shading, stats)
         opacity = 1.0 - o.palette[o.face_material, TRANSPARENCY]
-        rows["object"].append(np.full(int(accepted.sum()), index))
-        rows["opacity"].append(opacity[face_keep])
-        starts = np.concatenate([[0], np.cumsum(sizes)])
-        for f in np.flatnonzero(verdict == CLIP):  # drawn after the accepted faces of this object
-            points, attributes = clip_polygon(
-                clip[faces[f]], values[starts[f] : starts[f + 1]], trace=tracer, polygon=int(f)
-            )
-            stats.clipped += 1
-            if len(points) >= 3:
-                rows["screen"].append(_divided(points, width, height))
-                rows["values"].append(attributes)
-                rows["sizes"].append(np.array([len(points)]))
-                rows["flat"].append(flat[f : f + 1])
-                rows["object"].append(np.array([index]))
-                rows["opacity"].append(opacity[f : f + 1])
-            else:
-                stats.off_screen += 1
-    xy = _joined([part[0] for part in rows["screen"]], (0, 2))
-    z = _joined([part[1] for part in rows["screen"]], (0,))
-    inv_w = _joined([part[2] for part in rows["screen"]], (0,))
-    sizes = (
-        np.concatenate(rows["sizes"]).astype(np.int64) if rows["sizes"] else np.zeros(0, np.int64)
-    )
-    k = ATTRIBUTES[shading]
-    values = _joined(rows["values"], (0, k))
-    flat_colors = (
-        np.concatenate(rows["flat"]) if rows["flat"] else np.zeros((0, 3 if k == 0 else 0))
-    )
-    polygon_object = (
-        np.concatenate(rows["object"]).astype(np.int64) if rows["object"] else np.zeros(0, np.int64)
-    )
+        polygons = (clip, verdict, values, flat, opacity)
+        _add_accepted(rows, index, o, polygons, width, height)
+        _add_clipped(rows, index, o, polygons, width, height, tracer, stats)
+    return _assembled(rows, shading, stats, _stages(stats, cull, cull_ran))
 
-    vertex_object = np.repeat(polygon_object, sizes)
-    screen = _checked_screen(xy, z, inv_w, values, sizes, vertex_object, shading)
-    stats.polygons_drawn = len(sizes)
-    stages = [
+
+def _verdicts(camera, o: _ObjectInWorld, codes, culling, tracer, stats) -> np.ndarray:
+    """Each face's verdict (ACCEPT, REJECT, CLIP or CULLED), counted in `stats`."""
+    keep = np.ones(len(o.faces), bool)
+    if culling:
+        culled, _ = cull_faces(camera, o.world, o.flat_faces, trace=tracer)
+        keep &= ~culled
+        stats.culled += int(culled.sum())
+    verdict = face_verdicts(codes, o.corners, o.flat_faces.starts)
+    verdict[~keep] = CULLED
+    stats.off_screen += int((verdict == REJECT).sum())
+    stats.accepted += int((verdict == ACCEPT).sum())
+    return verdict
+
+
+def _attributes(scene, o: _ObjectInWorld, shading, stats) -> tuple[np.ndarray, np.ndarray]:
+    """Attributes per corner and flat colours per face, by shading model."""
+    world, corners = o.world, o.corners
+    if shading == "gouraud" and o.vertex_normals is not None:  # each vertex lit once
+        values = _lit(scene, world, o.vertex_normals, o.palette[o.vertex_material])[corners]
+        stats.shaded_vertices += len(world)
+    elif shading == "gouraud":  # corners of one vertex differ: each corner lit
+        values = _lit(scene, world[corners], o.corner_normals, o.palette[o.corner_material])
+        stats.shaded_vertices += len(values)
+    elif shading in ("phong", "gooch", "fast_phong"):
+        values = o.corner_surface()
+    else:
+        values = np.zeros((len(corners), 0))
+    flat = np.zeros((len(o.faces), 3 if shading == "flat" else 0))
+    if shading == "flat" and len(o.faces):
+        flat = _lit(scene, o.centroids, o.face_normals, o.palette[o.face_material])
+    return values, flat
+
+
+def _add_accepted(rows, index, o: _ObjectInWorld, polygons, width, height) -> None:
+    """Append the object's accepted faces to `rows`, projected to the screen."""
+    clip, verdict, values, flat, opacity = polygons
+    accepted = verdict == ACCEPT
+    everything = bool(accepted.all())  # the common case: no array needs picking from
+    corner_keep = slice(None) if everything else np.repeat(accepted, o.sizes)
+    face_keep = slice(None) if everything else accepted
+    screen = screen_vertices(clip, o.corners[corner_keep], width, height)
+    rows.append((screen, values[corner_keep], o.sizes[face_keep], flat[face_keep],
+                 np.full(int(accepted.sum()), index), opacity[face_keep]))  # fmt: skip
+
+
+def _add_clipped(rows, index, o: _ObjectInWorld, polygons, width, height, tracer, stats) -> None:
+    """Append the object's straddling faces, clipped to the view volume (drawn after the rest)."""
+    clip, verdict, values, flat, opacity = polygons
+    starts = np.concatenate([[0], np.cumsum(o.sizes)])
+    for f in np.flatnonzero(verdict == CLIP):
+        points, attributes = clip_polygon(
+            clip[o.faces[f]], values[starts[f] : starts[f + 1]], trace=tracer, polygon=int(f)
+        )
+        stats.clipped += 1
+        if len(points) >= 3:
+            rows.append((_divided(points, width, height), attributes, np.array([len(points)]),
+                         flat[f : f + 1], np.array([index]), opacity[f : f + 1]))  # fmt: skip
+        else:
+            stats.off_screen += 1
+
+
+def _stages(stats, cull, cull_ran) -> list[Stage]:
+    """What the cull and clip stages did, for the render plan."""
+    return [
         Stage(
             "cull",
             cull_ran,
@@ -270,7 +275,23 @@ def prepare(
             else "every polygon trivially accepted or rejected",
         ),
     ]
-    polygon_opacity = np.concatenate(rows["opacity"]) if rows["opacity"] else np.zeros(0)
+
+
+def _assembled(rows, shading, stats, stages) -> _Prepared:
+    """All objects' rows joined into the screen polygons the z-buffer draws."""
+    screen, values, sizes, flat, objects, opacity = list(zip(*rows, strict=True)) or [()] * 6
+    xy = _joined([part[0] for part in screen], (0, 2))
+    z = _joined([part[1] for part in screen], (0,))
+    inv_w = _joined([part[2] for part in screen], (0,))
+    sizes = np.concatenate(sizes).astype(np.int64) if sizes else np.zeros(0, np.int64)
+    k = ATTRIBUTES[shading]
+    values = _joined(values, (0, k))
+    flat_colors = np.concatenate(flat) if flat else np.zeros((0, 3 if k == 0 else 0))
+    polygon_object = np.concatenate(objects).astype(np.int64) if objects else np.zeros(0, np.int64)
+    vertex_object = np.repeat(polygon_object, sizes)
+    screen = _checked_screen(xy, z, inv_w, values, sizes, vertex_object, shading)
+    stats.polygons_drawn = len(sizes)
+    polygon_opacity = np.concatenate(opacity) if opacity else np.zeros(0)
     return _Prepared(screen, flat_colors, polygon_object, polygon_opacity, stats, stages)
 
 

@@ -147,3 +147,24 @@ def say(label: widgets.HTML, message: str, *, error: bool = False) -> None:
     """Show `message` in `label` (red when it is an error)."""
     color = "#b00020" if error else "#555"
     label.value = f"<span style='color:{color}'>{html.escape(message)}</span>" if message else ""
+
+
+def note_label(note: str) -> widgets.HTML:
+    """A status label saying `note` (e.g. how the trace was filtered; empty: nothing shown)."""
+    label = status_label()
+    say(label, note)
+    return label
+
+
+def pixel_region(points: np.ndarray, width: int, height: int, margin: int) -> tuple[int, ...]:
+    """(x_start, x_end, y_start, y_end): the points' pixels and `margin` more each side, on the raster.
+
+    `points` is an (N, 2) array of (x, y); a region off the raster is the whole raster.
+    """
+    low = np.floor(points.min(axis=0)).astype(int) - margin
+    high = np.ceil(points.max(axis=0)).astype(int) + margin
+    x_start, y_start = max(int(low[0]), 0), max(int(low[1]), 0)
+    x_end, y_end = min(int(high[0]), width), min(int(high[1]), height)
+    if x_end <= x_start or y_end <= y_start:  # off the raster: show all of it
+        return 0, width, 0, height
+    return x_start, x_end, y_start, y_end

@@ -39,7 +39,7 @@ from ..antialias.peers import (
 from ..conventions import short_repr
 from ..geometry import as_coordinates
 from ..trace import Trace
-from ._common import WIDEST, fmt, html_table, new_figure, say, status_label
+from ._common import WIDEST, fmt, html_table, new_figure, note_label, pixel_region, say
 from .stepper import Stepper, draw_pixel_grid, figure_widget, first_steps, refresh_figure
 
 __all__ = [
@@ -133,7 +133,7 @@ class DislopView:
         self._read_columns()
 
         fig, (ax,) = new_figure(1, width=6.0, height=5.4)
-        self.region = _region(np.vstack([p0, p1]), self.width, self.height)
+        self.region = pixel_region(np.vstack([p0, p1]), self.width, self.height, 2)
         self.coverage = ax.imshow(
             np.zeros((self.height, self.width)),
             origin="lower",
@@ -173,8 +173,7 @@ class DislopView:
         }  # fmt: skip
         self.figure, self.ax = fig, ax
         self.text = widgets.HTML(layout={"flex": "1 1 380px"})
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox(
             [
@@ -416,17 +415,6 @@ def _frame(steep: bool, flip: bool) -> str:
 
 def _role_area(event, role: str) -> float:
     return {"upper": event.up, "middle": event.mid, "lower": event.low, "spill": event.spill}[role]
-
-
-def _region(ends: np.ndarray, width: int, height: int) -> tuple[int, int, int, int]:
-    """(x_start, x_end, y_start, y_end): the line's pixels and two more each side, on the raster."""
-    low = np.floor(ends.min(axis=0)).astype(int) - 2
-    high = np.ceil(ends.max(axis=0)).astype(int) + 2
-    x_start, y_start = max(int(low[0]), 0), max(int(low[1]), 0)
-    x_end, y_end = min(int(high[0]), width), min(int(high[1]), height)
-    if x_end <= x_start or y_end <= y_start:  # off the raster: show all of it
-        return 0, width, 0, height
-    return x_start, x_end, y_start, y_end
 
 
 def _pixel_points(figure, axes, region) -> float:

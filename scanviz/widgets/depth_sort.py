@@ -33,7 +33,7 @@ from matplotlib.patches import Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import ScreenPolygons, solve, zbuffer
 from ..visibility.painter import Painter, sort_key
-from ._common import WIDEST, fmt, html_table, new_figure, say, status_label
+from ._common import WIDEST, fmt, html_table, new_figure, note_label, say
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
@@ -244,8 +244,7 @@ class DepthSortView:
         self.figure, self.axes = fig, (ax_painted, ax_final, ax_z)
         self.list_table, self.tests_table = widgets.HTML(), widgets.HTML()
         self.settled, self.log = widgets.HTML(), widgets.HTML()
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox(
             [
@@ -526,8 +525,7 @@ class PainterView:
         self.summary = widgets.HTML(
             f"{int(wrong.sum())} samples differ from the z-buffer (outlined in red)"
         )
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox([self.note, self._canvas, self.summary, self.list_table])
         self.step = 0

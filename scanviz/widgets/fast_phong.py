@@ -26,7 +26,7 @@ from ..geometry import as_coordinates
 from ..shading.fast_phong import ShadedTriangle, exact_phong_triangle, fast_phong_triangle
 from ..trace import Recorder, Trace
 from ..trace.display import scroll_box
-from ._common import WIDEST, fmt, html_table, new_figure, say, status_label, swatch
+from ._common import WIDEST, fmt, html_table, new_figure, note_label, pixel_region, say, swatch
 from .stepper import Stepper, draw_pixel_grid, figure_widget, first_steps, refresh_figure
 
 KINDS = ("fast_phong_setup", "fast_phong_pixel")
@@ -104,7 +104,7 @@ class FastPhongView:
         self._read_samples(exact)
 
         fig, (ax_fast, ax_error) = new_figure(2, width=WIDEST, height=4.4)
-        region = _region(vertices, self.width, self.height)
+        region = pixel_region(vertices, self.width, self.height, 1)
         extent = (0, self.width, 0, self.height)
         self.picture = ax_fast.imshow(
             self._background, origin="lower", extent=extent, interpolation="nearest"
@@ -160,8 +160,7 @@ class FastPhongView:
         self.figure, self.axes = fig, (ax_fast, ax_error)
         self.text = widgets.HTML()
         self.coefficients = widgets.HTML(self._coefficients_table())
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox([self.note, self._canvas, self.text, self.coefficients])
         self.step = 0
@@ -348,17 +347,6 @@ def _sum(value: float, step: float) -> str:
 
 def _count(number: int, noun: str) -> str:
     return f"{number} {noun}" + ("" if number == 1 else "s")
-
-
-def _region(vertices: np.ndarray, width: int, height: int) -> tuple[int, int, int, int]:
-    """(x_start, x_end, y_start, y_end): the triangle's pixels and one more each side, on the raster."""
-    low = np.floor(vertices.min(axis=0)).astype(int) - 1
-    high = np.ceil(vertices.max(axis=0)).astype(int) + 1
-    x_start, y_start = max(int(low[0]), 0), max(int(low[1]), 0)
-    x_end, y_end = min(int(high[0]), width), min(int(high[1]), height)
-    if x_end <= x_start or y_end <= y_start:  # off the raster: show all of it
-        return 0, width, 0, height
-    return x_start, x_end, y_start, y_end
 
 
 def fast_phong_stepper(

@@ -17,7 +17,7 @@ from matplotlib.patches import Rectangle
 from ..geometry import Polygon
 from ..raster.fill import ColourWash, Pattern, Solid, VertexColours, fill_polygon
 from ..trace import Recorder, Trace
-from ._common import fmt, new_figure, say, status_label
+from ._common import fmt, new_figure, note_label
 from .scan import ScanNarrator
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .zbuffer import narrate_interpolation
@@ -86,8 +86,7 @@ class FillView:
         ax.set_title(type(fill).__name__, fontsize=9)
         fig.tight_layout()
         self.figure, self.ax = fig, ax
-        self.text, self.note = widgets.HTML(), status_label()
-        say(self.note, note)
+        self.text, self.note = widgets.HTML(), note_label(note)
         self._canvas = figure_widget(fig)
         self.text.layout = {"min_width": "0", "flex": "1 1 20em", "margin": "0 0 0 12px"}
         row = widgets.HBox([self._canvas, self.text], layout={"flex_flow": "row wrap"})

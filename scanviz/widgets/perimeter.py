@@ -26,7 +26,7 @@ from ..surfaces import (
     floating_perimeter,
 )
 from ..trace import Trace
-from ._common import WIDEST, html_table, new_figure, say, status_label
+from ._common import WIDEST, html_table, new_figure, note_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .surface_grid import CURRENT, GridFromAbove, check_surface_view, enumerated_event
 
@@ -128,8 +128,7 @@ class PerimeterView:
         self.grid.number_facets()
         self.figure, self.axes = fig, (ax_screen, ax_grid)
         self.text = widgets.HTML()
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox([self.note, widgets.HBox([self._canvas]), self.text])
         self.show(0)

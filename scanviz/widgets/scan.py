@@ -150,11 +150,16 @@ class ScanNarrator:
             + "."
         )
 
-    def _edges_activated(self, step, event) -> str:
+    def _moving_edges(self, step, event, verbs: tuple[str, str]):
+        """The event's edges in the edge table, their names, and the verb (one, many) and pronoun."""
         records = self.edge_records(step)
-        entering = [records[e] for e in event.edges if e in records]
-        names = listed([_edge_name(e) for e in entering] or [f"e{e}" for e in event.edges])
-        verb, their = ("enters", "its") if len(event.edges) == 1 else ("enter", "their")
+        found = [records[e] for e in event.edges if e in records]
+        names = listed([_edge_name(e) for e in found] or [f"e{e}" for e in event.edges])
+        verb, their = (verbs[0], "its") if len(event.edges) == 1 else (verbs[1], "their")
+        return found, names, verb, their
+
+    def _edges_activated(self, step, event) -> str:
+        entering, names, verb, their = self._moving_edges(step, event, ("enters", "enter"))
         if not entering:  # the trace was filtered: no edge table to read ymin from
             return f"Row y = {event.y}: {names} {verb} the AET: this row is {their} bucket."
         ymins = listed(sorted({f"{e.ymin:g}" for e in entering}, key=float))
@@ -169,10 +174,7 @@ class ScanNarrator:
         )
 
     def _edges_retired(self, step, event) -> str:
-        records = self.edge_records(step)
-        leaving = [records[e] for e in event.edges if e in records]
-        names = listed([_edge_name(e) for e in leaving] or [f"e{e}" for e in event.edges])
-        verb, their = ("leaves", "its") if len(event.edges) == 1 else ("leave", "their")
+        leaving, names, verb, their = self._moving_edges(step, event, ("leaves", "leave"))
         if not leaving:  # the trace was filtered: no edge table to read ymax from
             return f"Row y = {event.y}: {names} {verb} the AET: the row reached {their} ymax."
         ymaxes = listed(sorted({f"{e.ymax:g}" for e in leaving}, key=float))

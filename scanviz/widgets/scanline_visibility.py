@@ -19,7 +19,7 @@ from matplotlib.patches import Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import solve, zbuffer
 from ..visibility.scanline_visibility import Scanline
-from ._common import WIDEST, fmt, html_table, listed, new_figure, say, status_label
+from ._common import WIDEST, fmt, html_table, listed, new_figure, note_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_color, polygon_colors
 
@@ -129,8 +129,7 @@ class ScanlineVisibilityView:
         self.figure, self.axes = fig, axes
 
         self.ast, self.sst, self.spans = widgets.HTML(), widgets.HTML(), widgets.HTML()
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         tables = widgets.HBox([self.ast, self.sst, self.spans], layout={"flex_flow": "row wrap"})
         self.widget = widgets.VBox([self.note, self._canvas, tables])

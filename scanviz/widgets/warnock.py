@@ -21,7 +21,7 @@ from matplotlib.patches import Patch, Rectangle
 from ..trace import Recorder, Trace
 from ..visibility import solve
 from ..visibility.warnock import CASES, Warnock
-from ._common import WIDEST, html_table, listed, new_figure, say, status_label
+from ._common import WIDEST, html_table, listed, new_figure, note_label
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .visibility import outline_samples, polygon_colors
 
@@ -121,8 +121,7 @@ class WarnockView:
         fig.tight_layout(rect=(0, 0.09, 1, 1))
         self.figure, self.axes = fig, axes
         self.text = widgets.HTML()
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox([self.note, self._canvas, self.text])
         self.show(0)

@@ -15,7 +15,7 @@ from matplotlib.patches import Rectangle
 from ..pipeline import RenderResult, render
 from ..trace import Recorder, Trace
 from ..trace.display import scroll_box
-from ._common import WIDEST, fmt, html_table, new_figure, parse_pixel, say, status_label
+from ._common import WIDEST, fmt, html_table, new_figure, note_label, parse_pixel, say, status_label
 from .stepper import Stepper, figure_widget, refresh_figure
 
 HISTORY_COLUMNS = ("step", "polygon", "incoming z", "stored z", "test")
@@ -167,8 +167,7 @@ class ZBufferView:
         self.follow.observe(self._follow_ticked, names="value")
         self.history = widgets.HTML()
         self.status = status_label()
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         self.widget = widgets.VBox(
             [
@@ -514,8 +513,7 @@ class InterpolationView:
         fig.tight_layout()
         self.figure, self.ax = fig, ax
         self.setup, self.edges, self.spans = widgets.HTML(), widgets.HTML(), widgets.HTML()
-        self.note = status_label()
-        say(self.note, note)
+        self.note = note_label(note)
         self._canvas = figure_widget(fig)
         tables = widgets.VBox(
             [self.setup, self.edges, self.spans], layout={"min_width": "0", "flex": "1 1 30em"}
