@@ -17,6 +17,8 @@ jail ships it, with `display` and `schema`, as its whole scanviz
 (`scanviz.exercises.jail.launch`).
 """
 
+# ruff: noqa: F401 -- the imports below are the re-exports; `__all__` lists them all
+
 from .abuffer import (
     CoverageBlended,
     EdgeMask,
@@ -76,72 +78,12 @@ from .visibility import (
     VisibleSpan,
 )
 
+# Every record and event class above, and the registry: what `scanviz.trace` re-exports.
 __all__ = [
-    "ActiveSurfaces",
-    "AetEntry",
-    "AetSorted",
-    "AmbiguityTest",
-    "AreaClassified",
-    "BspCandidate",
-    "BspNode",
-    "BspVisited",
-    "CoverageBlended",
-    "Cut",
-    "DepthTest",
-    "DislopColumn",
     "EVENT_TYPES",
-    "EdgeFunction",
-    "EdgeFunctionRow",
-    "EdgeMask",
-    "EdgeMaskEntry",
-    "EdgeRecord",
-    "EdgeTableBuilt",
-    "EdgeValueEntry",
-    "EdgeValues",
-    "EdgesActivated",
-    "EdgesRetired",
-    "Event",
-    "FaceCulled",
-    "FacetsEnumerated",
-    "FastPhongPixel",
-    "FastPhongSetup",
-    "FragmentInserted",
-    "FragmentRecord",
-    "FragmentsDiscarded",
-    "FragmentsMerged",
-    "GridEdge",
-    "HorizonColumn",
-    "HorizonCurve",
-    "Illumination",
-    "LightTerm",
-    "LineSetup",
-    "LineStep",
-    "MaskBufferPixel",
-    "MaskBufferRow",
-    "MaskRun",
-    "PackStep",
-    "PaintOrder",
-    "PairTested",
-    "PerimeterEdge",
-    "PerimeterFacet",
-    "PerimeterUpdate",
-    "PieceRecord",
-    "PiecesSwapped",
-    "PixelPacked",
-    "PixelPainted",
-    "PolygonClipped",
-    "PolygonSetup",
-    "PolygonSplit",
-    "PolygonsSorted",
-    "PolygonsTransformed",
-    "PostColumn",
-    "RationalForms",
-    "Record",
-    "Span",
-    "SpanValues",
-    "SurfaceRecord",
-    "SurfaceTableBuilt",
-    "TriangleSetup",
-    "VerticesTransformed",
-    "VisibleSpan",
+    *sorted(
+        name
+        for name, value in dict(vars()).items()
+        if isinstance(value, type) and issubclass(value, Record)
+    ),
 ]
