@@ -20,7 +20,7 @@ from ..conventions import (
 from ..geometry import Polygon, as_coordinates, check_three_distinct, nested_array
 from ..limits import check_memory, current_memory_limit
 from ..trace import Recorder, Trace, Tracer
-from . import scan_compiled
+from . import fill_batched, scan_compiled
 from .fixed import SnappedPolygon, exact_bits, snap, snap_units
 from .scanline import ScanStats, scan_reference
 
@@ -226,7 +226,7 @@ def _as_polygon(polygon: object, index: int) -> Polygon:
 
 
 def _pack(snapped: list[SnappedPolygon]) -> tuple[np.ndarray, ...]:
-    """Polygons as flat arrays for `scan_compiled.fill_polygons`.
+    """Polygons as flat arrays for `fill_batched.fill_polygons`.
 
     Returns (units, contour_offsets, polygon_contours, scales): all vertices,
     all contour starts plus the end, and polygon p owning the contours
@@ -311,7 +311,7 @@ def fill_polygons(
         snapped_batch = _snap_batch(batch, sample, bits)
         if snapped_batch is not None:
             (count, size, _), (units, scale) = batch.shape, snapped_batch
-            return scan_compiled.fill_polygons(
+            return fill_batched.fill_polygons(
                 units.reshape(-1, 2),
                 np.arange(0, count * size + 1, size),
                 np.arange(count + 1),
@@ -329,7 +329,7 @@ def fill_polygons(
     snapped = [snap(_as_polygon(p, i), sample, bits) for i, p in enumerate(items)]
     rasters = 1 + any(not s.compilable for s in snapped)  # the reference's spans get their own
     check_memory(COUNT_BYTES * width * height * rasters + 16 * height, what)
-    image = scan_compiled.fill_polygons(
+    image = fill_batched.fill_polygons(
         *_pack([s for s in snapped if s.compilable]), width, height, rule == "evenodd"
     )
     # A grid finer than int64 takes needs the reference's Python ints.

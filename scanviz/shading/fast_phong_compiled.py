@@ -7,7 +7,8 @@ helpers. This module does the same for a whole batch inside numba, for
 `render(shading="fast_phong")`: per triangle the same compiled helpers of
 `scanviz.shading.taylor` (`_unit3`, `_plane`, `_halfway`, `_forms`,
 `theta_series`, `phi_series`), per row the span of the triangle's exact
-edge crossings (the samples `triangle_samples` finds), per span a direct
+edge crossings (the samples `triangle_samples` finds; the shared triangle
+walk of `scanviz.raster.walk_compiled`), per span a direct
 start and forward differences, per sample the table level by binary search.
 Only samples whose owner in `owners` is the triangle's polygon are written,
 so the visibility of the caller decides what is drawn. Same inputs, same
@@ -22,7 +23,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..raster.scan_compiled import ceil_div, exact_crossing, exact_step
+from ..raster.walk_compiled import triangle_span, triangle_walk
 from .lut import lut_level_compiled
 from .taylor import LEVELS, _forms, _halfway, _plane, _unit3, phi_series, theta_series
 
@@ -109,25 +110,9 @@ def _shade_batch(
             m = models[t, light]
             _quadratics((a, b, c), to_lights[t, light], to_viewers[t], blinn, diffuse[m], ambients[m], quadratics[light])  # fmt: skip
         sx, sy = origin[0] - offset, origin[1] - offset  # sample (px, py) is at px - sx
-        # vertices by y: 0 low, 1 mid, 2 high; rows [ceil(y_low), ceil(y_high)) (`rasterize_triangles`)
-        if y1 < y0:
-            x0, y0, x1, y1 = x1, y1, x0, y0
-        if y2 < y1:
-            x1, y1, x2, y2 = x2, y2, x1, y1
-        if y1 < y0:
-            x0, y0, x1, y1 = x1, y1, x0, y0
-        first, middle = max(ceil_div(y0, scale), 0), ceil_div(y1, scale)
-        stop = min(ceil_div(y2, scale), height)
-        if first >= stop:
-            continue
-        qa, ra, qa_step, ra_step, den_a = exact_crossing((x0, y0, x2, y2), scale, first)
-        short = (x0, y0, x1, y1) if first < middle else (x1, y1, x2, y2)
-        qb, rb, qb_step, rb_step, den_b = exact_crossing(short, scale, first)
+        first, stop, walk = triangle_walk(x0, y0, x1, y1, x2, y2, scale, height)
         for y in range(first, stop):
-            if y == middle and first < middle:  # the short side turns at the middle vertex
-                qb, rb, qb_step, rb_step, den_b = exact_crossing((x1, y1, x2, y2), scale, y)
-            ceil_a, ceil_b = qa + (ra > 0), qb + (rb > 0)
-            start, end = max(min(ceil_a, ceil_b), 0), min(max(ceil_a, ceil_b), width)
+            start, end, walk = triangle_span(walk, y, scale, width)
             for x in range(start, end):
                 for light in range(lights):
                     for j in range(TERMS):
@@ -142,8 +127,6 @@ def _shade_batch(
                 for k in range(3):
                     image[y, x, k] = min(max(total[k], 0.0), LEVELS) / LEVELS
                 written += 1
-            qa, ra = exact_step(qa, ra, qa_step, ra_step, den_a)
-            qb, rb = exact_step(qb, rb, qb_step, rb_step, den_b)
     return written
 
 

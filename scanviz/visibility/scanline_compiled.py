@@ -1,8 +1,9 @@
 """Compiled scanline visibility (numba), and the depth certificates both paths share.
 
 `scanline_ids` is `scanline.scanline_reference` without the tracing: one edge
-table of all drawn polygons (the z-buffer's `edge_table` per polygon, merged by
-first row), one active edge table of exact crossings sorted by ceil(x), so each
+table of all drawn polygons (the shared `edge_table` per polygon, merged by
+first row), one active edge table of exact crossings sorted by ceil(x) (the
+shared row step, `scanviz.raster.walk_compiled.step_row`), so each
 polygon covers on each row exactly the samples the z-buffer's scan conversion
 gives it (`scanviz.raster.scan_compiled` explains why any order by ceiling gives the
 same runs). The row's spans run between consecutive distinct crossing ceilings.
@@ -34,8 +35,17 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..raster.scan_compiled import CEIL, ROW_END, ROW_START, WINDING, activate, edge_table
-from .zbuffer_compiled import move_entry, plane_depth, retire_edges
+from ..raster.walk_compiled import (
+    CEIL,
+    ROW_END,
+    ROW_START,
+    TABLE_FIELDS,
+    WINDING,
+    edge_table,
+    scratch_aet,
+    step_row,
+)
+from .zbuffer_compiled import plane_depth
 
 ROUNDING = 16 * 2.0**-53  # 4 unit roundings for plane_depth's 4 operations, times a margin of 4
 SAFETY = 2.0**-50  # relative margin for the two roundings of `still_certain`
@@ -191,15 +201,17 @@ def merged_edge_table(units, offsets, drawn, scale, height):
     y_start, y_end = np.zeros(count, np.int64), np.zeros(count, np.int64)
     for p in range(count):
         if not drawn[p]:
-            tables.append(np.empty((9, 0), np.int64))
+            tables.append(np.empty((TABLE_FIELDS, 0), np.int64))
             continue
-        table, _, _ = edge_table(units, offsets[p : p + 2], scale, height)
+        table = np.empty((TABLE_FIELDS, offsets[p + 1] - offsets[p]), np.int64)
+        edges, _, _ = edge_table(units, offsets[p : p + 2], scale, height, table)
+        table = table[:, :edges].copy()  # contiguous, as the list's other tables
         tables.append(table)
         total += table.shape[1]
         if table.shape[1]:
             y_start[p] = table[ROW_START].min()
             y_end[p] = min(table[ROW_END].max(), height)
-    merged, polygon_of = np.empty((9, total), np.int64), np.empty(total, np.int64)
+    merged, polygon_of = np.empty((TABLE_FIELDS, total), np.int64), np.empty(total, np.int64)
     column = 0
     for p in range(count):
         n = tables[p].shape[1]
@@ -208,19 +220,6 @@ def merged_edge_table(units, offsets, drawn, scale, height):
         column += n
     order = np.argsort(merged[ROW_START], kind="mergesort")
     return np.ascontiguousarray(merged[:, order]), polygon_of[order], y_start, y_end
-
-
-@njit(cache=True, inline="always")
-def sort_by_ceil(aet, xs, edge_of, count):
-    """Insertion sort of the AET by ceil(x), nearly sorted already; column `count` holds."""
-    for i in range(1, count):
-        if aet[CEIL, i - 1] > aet[CEIL, i]:
-            move_entry(aet, xs, edge_of, i, count)
-            j = i
-            while j > 0 and aet[CEIL, j - 1] > aet[CEIL, count]:
-                move_entry(aet, xs, edge_of, j - 1, j)
-                j -= 1
-            move_entry(aet, xs, edge_of, count, j)
 
 
 @njit(cache=True)
@@ -253,30 +252,15 @@ def reusable(previous, certificates, snapshots, match, start, end, members, k, s
     return same_surfaces(members, k, snapshots[record[4] : record[4] + record[5]], stamp)
 
 
-@njit(cache=True)
-def step_edges(table, polygon_of, aet, xs, edge_of, n_active, entering, y, scale):
-    """Row y's AET: exhausted edges leave, the others step one row, this row's edges enter.
-
-    Returns (n_active, entering): the AET's size and the next edge of the table to enter.
-    """
-    kept = retire_edges(aet, xs, edge_of, n_active, y)
-    while entering < table.shape[1] and table[ROW_START, entering] == y:
-        activate(table, entering, aet, xs, kept, y, scale, True, np.float64)
-        edge_of[kept] = polygon_of[entering]
-        kept += 1
-        entering += 1
-    return kept, entering
-
-
 @njit(cache=True, inline="always")
-def cross(aet, edge_of, i, n_active, at, width, winding, members, slot, k):
+def cross(aet, edge_of, polygon_of, i, n_active, at, width, winding, members, slot, k):
     """Take the crossings at ceiling `at` (clipped), from AET entry i: surfaces enter or leave.
 
     members[:k] are the surfaces over the span, slot[p] p's place there (-1:
     absent). Returns (i, k) after the crossings.
     """
     while i < n_active and min(max(aet[CEIL, i], 0), width) == at:
-        p = edge_of[i]
+        p = polygon_of[edge_of[i]]
         inside = winding[p] != 0
         winding[p] += aet[WINDING, i]
         if inside and winding[p] == 0:  # p's run ends: swap-remove it
@@ -341,8 +325,7 @@ def scanline_ids(units, offsets, drawn, planes, scale, width, height, coherence)
     counts = np.zeros(COUNT_FIELDS, np.int64)
     table, polygon_of, y_start, y_end = merged_edge_table(units, offsets, drawn, scale, height)
     edges = table.shape[1]
-    aet, xs = np.empty((8, edges + 1), np.int64), np.empty((2, edges + 1))
-    edge_of = np.empty(edges + 1, np.int64)
+    aet, xs, edge_of = scratch_aet(edges, np.float64)
     winding, slot = np.zeros(count, np.int64), np.full(count, -1, np.int64)
     members, stamp = np.empty(count, np.int64), np.zeros(count + 1, np.int64)
     stack = np.empty((2 * width + 2, 2), np.int64)
@@ -360,15 +343,14 @@ def scanline_ids(units, offsets, drawn, planes, scale, width, height, coherence)
     ast = n_active = entering = next_change = 0
     y = table[ROW_START, 0] if edges else height
     while y < height and (n_active > 0 or entering < edges):
-        if n_active == 0 and table[ROW_START, entering] > y:
-            y = table[ROW_START, entering]  # skip empty rows
+        y, n_active, entering = step_row(
+            table, edges, entering, aet, xs, edge_of, n_active, y, scale, True, np.float64, False
+        )
         while next_change <= y:
             ast += changes[next_change]
             next_change += 1
-        n_active, entering = step_edges(table, polygon_of, aet, xs, edge_of, n_active, entering, y, scale)  # fmt: skip
         if n_active == 0:
             continue  # the last polygons were exhausted: on to the next entering one, if any
-        sort_by_ceil(aet, xs, edge_of, n_active)
         counts[ROWS] += 1
         counts[MAX_ACTIVE] = max(counts[MAX_ACTIVE], ast)
         kept, kept_certificates = np.empty((width + 1, 6), np.int64), np.empty((width + 1, 2))
@@ -401,7 +383,9 @@ def scanline_ids(units, offsets, drawn, planes, scale, width, height, coherence)
                             (start, end, w, origin), (slack, rate), members, k,
                         )  # fmt: skip
                 start = end
-            i, k = cross(aet, edge_of, i, n_active, end, width, winding, members, slot, k)
+            i, k = cross(
+                aet, edge_of, polygon_of, i, n_active, end, width, winding, members, slot, k
+            )
         # Every polygon's windings sum to zero along a row: no surface is left over.
         below, certificates, below_count = kept, kept_certificates, kept_count
         snapshots, below_row = kept_snapshots[:used], y

@@ -1,17 +1,15 @@
 """Compiled twin of the traced z-buffer (numba): the reference's depths, ids and values, fast.
 
-`zbuffer_polygons` draws all polygons in one call, with the edge table and
-exact crossings of `scanviz.raster.scan_compiled` and the interpolation formulas of
+`zbuffer_polygons` draws all polygons in one call, with the edge walker of
+`scanviz.raster.walk_compiled` and the interpolation formulas of
 `scanviz.raster.interpolate`, compiled from the same source (one definition,
 one order of operations, so the same bits as the reference).
 
-Unlike the plain scan kernel, the active edge table here is sorted by the
-exact crossing x = Q + R/DEN, not by ceil(x): a span takes its values from the
-two crossings that bound it, so the order within a pixel matters, and ties
-(equal x) keep their AET order as the reference's insertion sort does. The
-comparison r1/den1 < r2/den2 needs r1*den2 up to 2**110: `wide_product`
-forms it in two 64-bit words. Per-edge values live in arrays indexed by the
-edge's column in the edge table; AET entries carry that column in `edge_of`.
+Unlike the plain scan kernel, the walker sorts the active edge table here by
+the exact crossing x = Q + R/DEN, not by ceil(x): a span takes its values from
+the two crossings that bound it, so the order within a pixel matters. Per-edge
+values live in arrays indexed by the edge's column in the edge table; AET
+entries carry that column in `edge_of`.
 """
 
 from __future__ import annotations
@@ -22,24 +20,23 @@ from numba import njit, prange
 
 from .. import buffers
 from ..raster import interpolate as formulas
-from ..raster.scan_compiled import (
+from ..raster.walk_compiled import (
     CEIL,
     DEN,
     LOWER,
     ROW_END,
     ROW_START,
+    TABLE_FIELDS,
     UPPER,
     WINDING,
     Y0,
     Y1,
     Q,
     R,
-    activate,
-    advance,
     ceil_div,
     edge_table,
-    move,
-    put_edge,
+    scratch_aet,
+    step_row,
 )
 from ..threads import use_threads
 
@@ -61,57 +58,8 @@ STAT_FIELDS = 7
 # under (front to back: only empty samples), or write where the decided id is this polygon.
 DEPTH, OVER, UNDER, TARGET = range(4)
 WHOLE = 2**62  # rows -WHOLE..WHOLE: a whole polygon, no row left out
-TABLE_FIELDS = 9  # rows of an edge table (`scanviz.raster.scan_compiled.edge_table`)
-SORTED_IN_PLACE = 64  # polygons up to this many edges sort their edge table by insertion
 BAND_ROWS = 16  # sample rows per band of the parallel z-buffer (its unit of work)
 PARALLEL_WORK = 2**16  # polygons listed in bands plus pixels: below this, one thread draws
-
-
-@njit(cache=True, inline="always")
-def wide_product(a, b):
-    """(high, low) 64-bit words of a*b for int64 0 <= a, b < 2**63, as uint64.
-
-    >>> high, low = wide_product(2**62 + 3, 2**40 + 5)
-    >>> (int(high) << 64) + int(low) == (2**62 + 3) * (2**40 + 5)
-    True
-    """
-    half, mask = np.uint64(32), np.uint64(0xFFFFFFFF)
-    a, b = np.uint64(a), np.uint64(b)
-    a_high, a_low, b_high, b_low = a >> half, a & mask, b >> half, b & mask
-    low_low, high_low, low_high = a_low * b_low, a_high * b_low, a_low * b_high
-    middle = (low_low >> half) + (high_low & mask) + (low_high & mask)  # < 3 * 2**32
-    high = a_high * b_high + (high_low >> half) + (low_high >> half) + (middle >> half)
-    return high, (low_low & mask) | (middle << half)
-
-
-@njit(cache=True, inline="always")
-def crossing_before(aet, i, j):
-    """Whether AET entry i crosses the row left of entry j: `ExactCrossing.before`, exactly."""
-    if aet[Q, i] != aet[Q, j]:
-        return aet[Q, i] < aet[Q, j]
-    left_high, left_low = wide_product(aet[R, i], aet[DEN, j])
-    right_high, right_low = wide_product(aet[R, j], aet[DEN, i])
-    return left_high < right_high or (left_high == right_high and left_low < right_low)
-
-
-@njit(cache=True, inline="always")
-def move_entry(aet, xs, edge_of, source, target):
-    """Copy AET entry `source` (crossing and edge column) to column `target`."""
-    move(aet, xs, source, target)
-    edge_of[target] = edge_of[source]
-
-
-@njit(cache=True, inline="always")
-def sort_by_x(aet, xs, edge_of, count):
-    """aet_sorted: insertion sort by exact x, stable (ties keep their order); column `count` holds."""
-    for i in range(1, count):
-        if crossing_before(aet, i, i - 1):
-            move_entry(aet, xs, edge_of, i, count)
-            j = i
-            while j > 0 and crossing_before(aet, count, j - 1):
-                move_entry(aet, xs, edge_of, j - 1, j)
-                j -= 1
-            move_entry(aet, xs, edge_of, count, j)
 
 
 @njit(cache=True, inline="always")
@@ -180,30 +128,6 @@ def draw_span(polygon, y, start, end, z, dzdx, span_value, span_dvdx, depth, ids
 
 
 @njit(cache=True, inline="always")
-def retire_edges(aet, xs, edge_of, n_active, y):
-    """edges_retired: drop edges whose ymax is passed, step the others' x one row; the count kept."""
-    kept = 0
-    for i in range(n_active):
-        if aet[ROW_END, i] > y:
-            if kept != i:
-                move_entry(aet, xs, edge_of, i, kept)
-            advance(aet, xs, kept, True)
-            kept += 1
-    return kept
-
-
-@njit(cache=True, inline="always")
-def retire_and_step(aet, xs, edge_of, n_active, y, edge_value, edge_dvdy):
-    """`retire_edges`, then step the kept edges' values one row."""
-    kept = retire_edges(aet, xs, edge_of, n_active, y)
-    for i in range(kept):
-        e = edge_of[i]
-        for k in range(edge_value.shape[1]):
-            edge_value[e, k] += edge_dvdy[e, k]
-    return kept
-
-
-@njit(cache=True, inline="always")
 def start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx):
     """span_values: d(value)/dx between crossings i and i + 1, and the values at sample `start`."""
     x_left = crossing_x(aet[Q, i], aet[R, i], aet[DEN, i])
@@ -213,36 +137,6 @@ def start_span(aet, i, edge_of, edge_value, start, span_value, span_dvdx):
         dvdx = span_slope(edge_value[left, k], edge_value[right, k], x_left, x_right)
         span_dvdx[k] = dvdx
         span_value[k] = span_start(edge_value[left, k], dvdx, x_left, start)
-
-
-@njit(cache=True, inline="always")
-def edge_table_into(units, offsets, scale, height, table):
-    """`edge_table` of one polygon written into `table` (9, >= its edges): the edge count.
-
-    The same columns in the same order (sorted by first row, ties in vertex
-    order) without allocating: small polygons insert each edge after the
-    ones starting at or below its row; large ones take `edge_table`'s sort.
-    """
-    first, stop = offsets[0], offsets[1]
-    if stop - first > SORTED_IN_PLACE:
-        built, _, _ = edge_table(units, offsets, scale, height)
-        table[:, : built.shape[1]] = built
-        return built.shape[1]
-    count = 0
-    for i in range(first, stop):
-        j = i + 1 if i + 1 < stop else first
-        lower, upper = (i, j) if units[i, 1] <= units[j, 1] else (j, i)
-        row_start = max(ceil_div(units[lower, 1], scale), 0)
-        row_end = ceil_div(units[upper, 1], scale)
-        if row_start < min(row_end, height):
-            k = count
-            while k > 0 and table[ROW_START, k - 1] > row_start:
-                for field in range(TABLE_FIELDS):
-                    table[field, k] = table[field, k - 1]
-                k -= 1
-            put_edge(table, k, units, i, j, lower, upper, row_start, row_end)
-            count += 1
-    return count
 
 
 @njit(cache=True, inline="always")
@@ -262,21 +156,22 @@ def draw_polygon(
     height, width = depth.shape
     x_first, y_first, z_first, dzdx, dzdy = plane
     aet, xs, edge_of, edge_value, edge_dvdy, span_value, span_dvdx, table = buffers
-    count = edge_table_into(units, offsets, scale, height, table)
+    count, _, _ = edge_table(units, offsets, scale, height, table)
     n_active = entering = 0
     z_row, z_carry, previous_row = 0.0, 0.0, -2  # no row yet
     y = table[ROW_START, 0] if count else height
     while y < min(height, rows[1]) and (n_active > 0 or entering < count):
-        if n_active == 0 and table[ROW_START, entering] > y:
-            y = table[ROW_START, entering]  # skip empty rows
-        n_active = retire_and_step(aet, xs, edge_of, n_active, y, edge_value, edge_dvdy)
-        while entering < count and table[ROW_START, entering] == y:
-            activate(table, entering, aet, xs, n_active, y, scale, True, np.float64)
-            edge_of[n_active] = entering
-            start_edge(table, entering, channels, scale, y, edge_value, edge_dvdy)
-            n_active += 1
-            entering += 1
-        sort_by_x(aet, xs, edge_of, n_active)
+        for i in range(n_active):  # the edges still active on row y step their values
+            if aet[ROW_END, i] > y:
+                e = edge_of[i]
+                for k in range(edge_dvdy.shape[1]):
+                    edge_value[e, k] += edge_dvdy[e, k]
+        entered = entering
+        y, n_active, entering = step_row(
+            table, count, entering, aet, xs, edge_of, n_active, y, scale, True, np.float64, True
+        )
+        for e in range(entered, entering):
+            start_edge(table, e, channels, scale, y, edge_value, edge_dvdy)
         if y == previous_row + 1:  # between rows: z_row += dz/dy
             z_row, z_carry = compensated_step(z_row, z_carry, dzdy)
         else:
@@ -465,10 +360,11 @@ def _draw_band(
 @njit(cache=True)
 def scratch(largest, channel_count):
     """`draw_polygon`'s scratch arrays for polygons of up to `largest` vertices."""
+    aet, xs, edge_of = scratch_aet(largest, np.float64)
     return (
-        np.empty((8, largest + 1), np.int64),  # the AET, plus a spare column for sorting
-        np.empty((2, largest + 1)),  # float crossings: unused with exact ones
-        np.empty(largest + 1, np.int64),
+        aet,
+        xs,
+        edge_of,
         np.empty((largest, channel_count)),
         np.empty((largest, channel_count)),
         np.empty(channel_count),

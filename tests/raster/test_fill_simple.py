@@ -17,7 +17,7 @@ from shapely.geometry import LinearRing
 
 from scanviz import Polygon, fill_polygons, rasterize_triangles, scan_convert
 from scanviz.conventions import RULES, SAMPLE_MODES
-from scanviz.raster import scan_compiled
+from scanviz.raster import scan_compiled, simple_fill
 from scanviz.raster.fixed import snap
 
 WIDTH, HEIGHT = 40, 32
@@ -49,19 +49,19 @@ def simple_marks_sum(polygon, width, height, sample, bits) -> np.ndarray | None:
     if not turn:
         return None
     marks = np.zeros((height, width), np.int16)
-    scan_compiled.mark_simple(np.array(s.units), 0, len(s.units), s.scale, turn, marks)
+    simple_fill.mark_simple(np.array(s.units), 0, len(s.units), s.scale, turn, marks)
     return np.cumsum(marks, axis=1, dtype=np.int32)
 
 
 def orientation(polygon, sample="corner", bits=8) -> int:
     s = snap(Polygon(polygon), sample, bits)
     boxes = np.empty((4, len(s.units)), np.int64)
-    return scan_compiled.simple_orientation(np.array(s.units), 0, len(s.units), boxes)
+    return simple_fill.simple_orientation(np.array(s.units), 0, len(s.units), boxes)
 
 
 def star_orientation(polygon, sample="corner", bits=8) -> int:
     s = snap(Polygon(polygon), sample, bits)
-    return scan_compiled.star_orientation(np.array(s.units), 0, len(s.units))
+    return simple_fill.star_orientation(np.array(s.units), 0, len(s.units))
 
 
 def assert_proof_sound(vertices, turn) -> None:
@@ -137,7 +137,7 @@ def test_star_proof_is_sound_and_agrees_with_the_pairwise_proof(drawn, bits):
     if star and alone is None:  # proven simple by the star test only: mark it as such
         s = snap(Polygon(drawn), "corner", bits)
         marks = np.zeros((HEIGHT, WIDTH), np.int8)
-        scan_compiled.mark_simple(np.array(s.units), 0, len(s.units), s.scale, star, marks)
+        simple_fill.mark_simple(np.array(s.units), 0, len(s.units), s.scale, star, marks)
         expected = aet_marks_sum([drawn], WIDTH, HEIGHT, "corner", "nonzero", bits)
         np.testing.assert_array_equal(np.cumsum(marks, axis=1, dtype=np.int32), expected)
 

@@ -16,8 +16,8 @@ from scanviz.conventions import ARITHMETICS, COORD_LIMIT, RULES, SAMPLE_MODES
 from scanviz.raster import scan_compiled
 from scanviz.raster.api import scan_snapped
 from scanviz.raster.fixed import snap
-from scanviz.raster.scan_compiled import mul_divmod
 from scanviz.raster.scanline import scan_reference
+from scanviz.raster.walk_compiled import mul_divmod
 
 MANY = settings(max_examples=10 * settings.default.max_examples)
 WIDTH, HEIGHT = 24, 20
