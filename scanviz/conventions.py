@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Callable
 
 import numpy as np
 
@@ -93,14 +94,26 @@ def check_index(name: str, value: object) -> int:
     return int(value)
 
 
+def check_int(name: str, value: object, low: int, high: int) -> int:
+    """`value` as an int if it is an integer (not a bool) in low..high, else an error naming `name`.
+
+    >>> check_int("k", 3, 1, 64)
+    3
+    >>> check_int("k", 0, 1, 64)
+    Traceback (most recent call last):
+    ValueError: 'k' must be in 1..64; got 0
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name!r} must be an int; got {short_repr(value)}")
+    if not low <= value <= high:
+        raise ValueError(f"{name!r} must be in {low}..{high}; got {short_repr(value)}")
+    return int(value)
+
+
 def check_raster_size(width: object, height: object) -> tuple[int, int]:
     """Validate a raster size: ints in 0..MAX_RASTER_SIZE (zero gives an empty raster)."""
-    for name, value in (("width", width), ("height", height)):
-        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-            raise TypeError(f"{name!r} must be an int; got {short_repr(value)}")
-        if not 0 <= value <= MAX_RASTER_SIZE:
-            raise ValueError(f"{name!r} must be in 0..{MAX_RASTER_SIZE}; got {short_repr(value)}")
-    return int(width), int(height)
+    width = check_int("width", width, 0, MAX_RASTER_SIZE)
+    return width, check_int("height", height, 0, MAX_RASTER_SIZE)
 
 
 def finite_real(name: str, value: object) -> float:
@@ -151,3 +164,30 @@ def check_rows(name: str, array: np.ndarray, broken: np.ndarray, rule: str) -> N
     if broken.any():
         row = int(np.argwhere(broken)[0][0])
         raise ValueError(f"{name!r}[{row}] = {array[row].tolist()} {rule}")
+
+
+def type_name(value: object) -> str:
+    """The name of `value`'s type, for an error message that must not print `value` itself."""
+    return type(value).__name__
+
+
+def as_array(
+    value: object,
+    rule: str,
+    *,
+    dtype: type = np.float64,
+    copy: bool = False,
+    got: Callable[[object], str] = short_repr,
+) -> np.ndarray:
+    """`value` as an ndarray of `dtype` (a fresh one if `copy`), else a TypeError stating `rule`.
+
+    >>> as_array([1, 2], "'xs' must be numbers").tolist()
+    [1.0, 2.0]
+    >>> as_array("ab", "'xs' must be numbers")
+    Traceback (most recent call last):
+    TypeError: 'xs' must be numbers; got 'ab'
+    """
+    try:
+        return np.array(value, dtype=dtype) if copy else np.asarray(value, dtype=dtype)
+    except (TypeError, ValueError):
+        raise TypeError(f"{rule}; got {got(value)}") from None

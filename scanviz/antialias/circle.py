@@ -64,17 +64,7 @@ def dislop_circle(center: object, radius: float, width: int, height: int, *, tra
     >>> round(float(ring.sum()), 3), round(2 * math.pi * 5.0, 3)  # area, true area
     (31.664, 31.416)
     """
-    cx, cy = check_point("center", center)
-    radius = check_radius(radius)
-    tracer = as_tracer(trace)
-    image = new_raster(width, height, "dislop_circle")
-    if radius == 0.0:  # no circumference, no area
-        pass
-    elif tracer is None:
-        _round_kernel(cx - 0.5, cy - 0.5, radius, True, image)
-    else:
-        _round_reference(cx - 0.5, cy - 0.5, radius, True, image, tracer)
-    return finish(image, trace, tracer)
+    return _round("dislop_circle", center, radius, width, height, trace, ring=True)
 
 
 def dislop_disk(center: object, radius: float, width: int, height: int, *, trace: object = None):
@@ -110,16 +100,21 @@ def dislop_disk(center: object, radius: float, width: int, height: int, *, trace
     >>> round(float(disk[104, 101]), 6)  # the tangent trapezoid; the exact area is 0.784100
     0.79333
     """
+    return _round("dislop_disk", center, radius, width, height, trace, ring=False)
+
+
+def _round(caller: str, center, radius, width, height, trace, *, ring: bool):
+    """The ring (`ring`) or the disk of `radius` about `center`, checked, then walked."""
     cx, cy = check_point("center", center)
     radius = check_radius(radius)
     tracer = as_tracer(trace)
-    image = new_raster(width, height, "dislop_disk")
+    image = new_raster(width, height, caller)
     if radius == 0.0:  # no circumference, no area
         pass
     elif tracer is None:
-        _round_kernel(cx - 0.5, cy - 0.5, radius, False, image)
+        _round_kernel(cx - 0.5, cy - 0.5, radius, ring, image)
     else:
-        _round_reference(cx - 0.5, cy - 0.5, radius, False, image, tracer)
+        _round_reference(cx - 0.5, cy - 0.5, radius, ring, image, tracer)
     return finish(image, trace, tracer)
 
 

@@ -14,7 +14,7 @@ import numbers
 
 import numpy as np
 
-from ..conventions import short_repr
+from ..conventions import as_array, short_repr
 from ..geometry import as_coordinates
 from ..raster import midpoint_line
 from .line import dislop_line
@@ -64,12 +64,7 @@ def _ropiness_methods() -> dict:
 
 
 def _check_angles(angles: object) -> np.ndarray:
-    try:
-        values = np.asarray(angles, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"'angles' must be a 1-D array of degrees; got {short_repr(angles)}"
-        ) from None
+    values = as_array(angles, "'angles' must be a 1-D array of degrees")
     if values.ndim != 1 or not np.isfinite(values).all() or ((values < 0) | (values > 90)).any():
         raise ValueError(
             f"'angles' must be a 1-D array of finite degrees in 0..90; got {short_repr(angles)}"

@@ -27,14 +27,13 @@ Derivations and measured errors: docs/antialias-bench.md.
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 from numba import njit
 
 from ..abuffer.area import area_coverage
 from ..abuffer.masks import MASK_LAYOUTS, pixel_masks, popcount
-from ..conventions import check_choice, check_subpixel_bits, short_repr
+from ..conventions import check_choice, check_int, check_subpixel_bits
 from ._inputs import check_point, new_raster
 
 __all__ = [
@@ -50,14 +49,6 @@ __all__ = [
 
 MAX_SAMPLES = 64  # k x k samples per pixel, k at most this
 GS_STEPS = 16  # Gupta-Sproull table entries per pixel of distance
-
-
-def _check_samples(k: object) -> int:
-    if isinstance(k, bool) or not isinstance(k, numbers.Integral):
-        raise TypeError(f"'k' must be an int; got {short_repr(k)}")
-    if not 1 <= k <= MAX_SAMPLES:
-        raise ValueError(f"'k' must be in 1..{MAX_SAMPLES}; got {short_repr(k)}")
-    return int(k)
 
 
 # ---------------------------------------------------------------- Wu
@@ -297,7 +288,7 @@ def supersampled_line(p0: object, p1: object, width: int, height: int, k: int = 
            [0.5, 0.5, 0.5]])
     """
     (x0, y0), (x1, y1) = check_point("p0", p0), check_point("p1", p1)
-    k = _check_samples(k)
+    k = check_int("k", k, 1, MAX_SAMPLES)
     image = new_raster(width, height, "supersampled_line")
     _supersample_kernel(x0, y0, x1, y1, k, image)
     return image

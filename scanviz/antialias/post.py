@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from .. import steps
-from ..conventions import short_repr
+from ..conventions import as_array, short_repr
 from ..geometry import as_coordinates
 from ..trace.events import PostColumn
 from . import columns, tables
@@ -144,12 +144,7 @@ def _check_image(image: object) -> np.ndarray:
 
 
 def _check_color(color: object) -> np.ndarray:
-    try:
-        array = np.array(color, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"'color' must be three real numbers (r, g, b); got {short_repr(color)}"
-        ) from None
+    array = as_array(color, "'color' must be three real numbers (r, g, b)", copy=True)
     if array.shape != (3,) or not np.all((array >= 0.0) & (array <= 1.0)):
         raise ValueError(f"'color' must be (r, g, b) in 0..1; got {short_repr(color)}")
     return array
@@ -205,14 +200,7 @@ def _segment_reference(
                 if dxy > 0.5:
                     row, dxy = row + 1, dxy - 1.0
         if not edge and (column <= start + 1 or column >= end - 1):  # a cap column: clip exactly
-            middle = math.ceil(v0 + (column - u0) * slope - 0.5)
-            for r in range(-2, 3):
-                bottom = middle + r - 0.5
-                box = (column - 0.5, bottom, column + 0.5, bottom + 1.0)
-                area = columns.clip_area(xs, ys, 4, *box, work)
-                if quantum > 0.0:
-                    area = math.floor(min(max(area, 0.0), 1.0) * quantum + 0.5) / quantum
-                _blend(image, column, middle + r, area, steep, flip, color)
+            _blend_cap(image, column, u0, v0, slope, xs, ys, work, quantum, steep, flip, color)
             continue
         if not simple:
             i, j = indices_of(slope, dxy)
@@ -244,6 +232,23 @@ def _blend(image, column, row, area, steep, flip, color):  # pragma: no cover - 
     if 0 <= x < image.shape[1] and 0 <= y < image.shape[0]:
         for c in range(3):
             image[y, x, c] = area * color[c] + (1.0 - area) * image[y, x, c]
+
+
+@njit(cache=True)
+def _blend_cap(
+    image, column, u0, v0, slope, xs, ys, work, quantum, steep, flip, color
+):  # pragma: no cover - compiled
+    """A cap column: the band (corners `xs`, `ys`) clipped exactly to the five pixels about
+    the centre line, each area (quantized if `quantum` > 0) blended over `image`."""
+    middle = math.ceil(v0 + (column - u0) * slope - 0.5)
+    for r in range(-2, 3):
+        bottom = middle + r - 0.5
+        area = columns.clip_area_compiled(
+            xs, ys, 4, column - 0.5, bottom, column + 0.5, bottom + 1.0, work
+        )
+        if quantum > 0.0:
+            area = math.floor(min(max(area, 0.0), 1.0) * quantum + 0.5) / quantum
+        _blend(image, column, middle + r, area, steep, flip, color)
 
 
 @njit(cache=True)
@@ -279,16 +284,7 @@ def _segment_kernel(
                     dxy -= 1.0
                 j = int((dxy + 0.5) * 50 + 0.5)
         if not edge and (column <= start + 1 or column >= end - 1):  # a cap column: clip exactly
-            centre = v0 + (column - u0) * slope
-            middle = math.ceil(centre - 0.5)
-            for r in range(-2, 3):
-                bottom = middle + r - 0.5
-                area = columns.clip_area_compiled(
-                    xs, ys, 4, column - 0.5, bottom, column + 0.5, bottom + 1.0, work
-                )
-                if quantum > 0.0:
-                    area = math.floor(min(max(area, 0.0), 1.0) * quantum + 0.5) / quantum
-                _blend(image, column, middle + r, area, steep, flip, color)
+            _blend_cap(image, column, u0, v0, slope, xs, ys, work, quantum, steep, flip, color)
             continue
         up, mid, low = lut[i, j, 0], lut[i, j, 1], lut[i, j, 2]
         _blend(image, column, row + 1, up, steep, flip, color)

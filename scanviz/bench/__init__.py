@@ -21,6 +21,7 @@ import importlib
 import statistics
 import time
 from collections.abc import Callable
+from types import ModuleType
 
 SUITES = (
     "raster",
@@ -47,6 +48,14 @@ def best_time(function: Callable[[], object], *, repeat: int = 5, budget: float 
         function()
         times.append(time.perf_counter() - tick)
     return statistics.median(times)
+
+
+def optional_module(name: str) -> ModuleType | None:
+    """The module `name` if it is installed, else None: a peer library to compare against."""
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        return None
 
 
 def suite_function(suite: str) -> Callable[..., list[dict]]:

@@ -27,30 +27,15 @@ import numpy as np
 
 from ..antialias._inputs import check_point, check_radius, new_raster
 from ..geometry import Polygon
+from . import optional_module
 
 SHIFT = 8  # OpenCV fractional bits, as scanviz snaps to 1/256 pixel
 FULL = 255.0
 
 
-def _skia():
-    try:
-        import skia
-    except ImportError:
-        return None
-    return skia
-
-
-def _cv2():
-    try:
-        import cv2
-    except ImportError:
-        return None
-    return cv2
-
-
 def _skia_draw(width: int, height: int, draw) -> np.ndarray:
     """Run `draw(canvas)` on a zeroed A8 surface; the alpha as coverage, row 0 at the bottom."""
-    skia = _skia()
+    skia = optional_module("skia")
     image = new_raster(width, height, "skia")
     if image.size == 0:
         return image
@@ -68,7 +53,7 @@ def skia_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
            [1., 1., 1., 1.],
            [0., 0., 0., 0.]])
     """
-    skia = _skia()
+    skia = optional_module("skia")
     (x0, y0), (x1, y1) = check_point("p0", p0), check_point("p1", p1)
     paint = skia.Paint(
         AntiAlias=True,
@@ -81,7 +66,7 @@ def skia_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
 
 def skia_polygon(polygon: object, width: int, height: int) -> np.ndarray:
     """A polygon (nonzero winding) as a skia anti-aliased path fill."""
-    skia = _skia()
+    skia = optional_module("skia")
     contours = Polygon(polygon).contours
     path = skia.Path()
     for contour in contours:
@@ -93,7 +78,7 @@ def skia_polygon(polygon: object, width: int, height: int) -> np.ndarray:
 
 def skia_disk(center: object, radius: float, width: int, height: int) -> np.ndarray:
     """A disk as skia's anti-aliased ``drawCircle`` fill."""
-    skia = _skia()
+    skia = optional_module("skia")
     (cx, cy), radius = check_point("center", center), check_radius(radius)
     paint = skia.Paint(AntiAlias=True)
     return _skia_draw(width, height, lambda c: c.drawCircle(cx, height - cy, radius, paint))
@@ -120,7 +105,7 @@ def opencv_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
     >>> opencv_line((0, 10.5), (20, 10.5), 20, 20).sum(axis=1).argmax()  # the row at y = 10.5
     np.int64(10)
     """
-    cv2 = _cv2()
+    cv2 = optional_module("cv2")
     (x0, y0), (x1, y1) = check_point("p0", p0), check_point("p1", p1)
     a, b = _cv2_point(x0, y0, height), _cv2_point(x1, y1, height)
     return _cv2_draw(width, height, lambda c: cv2.line(c, a, b, 255, 1, cv2.LINE_AA, SHIFT))
@@ -128,7 +113,7 @@ def opencv_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
 
 def opencv_polygon(polygon: object, width: int, height: int) -> np.ndarray:
     """A polygon as ``cv2.fillPoly(..., lineType=LINE_AA, shift=SHIFT)``."""
-    cv2 = _cv2()
+    cv2 = optional_module("cv2")
     contours = [
         np.array([_cv2_point(x, y, height) for x, y in c.tolist()], dtype=np.int32)
         for c in Polygon(polygon).contours
@@ -138,7 +123,7 @@ def opencv_polygon(polygon: object, width: int, height: int) -> np.ndarray:
 
 def opencv_disk(center: object, radius: float, width: int, height: int) -> np.ndarray:
     """A disk as ``cv2.circle(..., thickness=-1, lineType=LINE_AA, shift=SHIFT)``."""
-    cv2 = _cv2()
+    cv2 = optional_module("cv2")
     (cx, cy), radius = check_point("center", center), check_radius(radius)
     middle, r = _cv2_point(cx, cy, height), int(np.rint(radius * 2.0**SHIFT))
     return _cv2_draw(width, height, lambda c: cv2.circle(c, middle, r, 255, -1, cv2.LINE_AA, SHIFT))
@@ -146,9 +131,9 @@ def opencv_disk(center: object, radius: float, width: int, height: int) -> np.nd
 
 def _installed() -> dict[str, dict[str, object]]:
     peers = {}
-    if _skia() is not None:
+    if optional_module("skia") is not None:
         peers["skia"] = {"line": skia_line, "edge": skia_polygon, "disk": skia_disk}
-    if _cv2() is not None:
+    if optional_module("cv2") is not None:
         peers["OpenCV LINE_AA"] = {"line": opencv_line, "edge": opencv_polygon, "disk": opencv_disk}
     return peers
 

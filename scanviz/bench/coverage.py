@@ -33,7 +33,7 @@ import numpy as np
 from .. import catalog
 from ..abuffer.area import area_coverage
 from ..raster import scan_convert
-from . import best_time
+from . import best_time, optional_module
 
 SIZE = 256
 BITS = 8
@@ -99,9 +99,8 @@ def _mask_method(name: str) -> Callable | None:
 
 
 def _skia_method() -> Callable | None:
-    try:
-        import skia
-    except ImportError:
+    skia = optional_module("skia")
+    if skia is None:
         return None
     paint = skia.Paint(AntiAlias=True, Color=skia.ColorBLACK)
 

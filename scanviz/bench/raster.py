@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..raster import fill_polygons, rasterize_triangles
-from . import best_time
+from . import best_time, optional_module
 
 SIZE = 1024
 
@@ -46,14 +46,6 @@ def random_stars(count: int, points: int, seed: int) -> list[np.ndarray]:
     return stars
 
 
-def _opencv():
-    try:
-        import cv2
-    except ImportError:
-        return None
-    return cv2
-
-
 def _opencv_fill(cv2, polygons, convex: bool) -> np.ndarray:
     image = np.zeros((SIZE, SIZE), np.uint8)
     fixed = [np.rint(np.asarray(p) * 256).astype(np.int32) for p in polygons]
@@ -74,7 +66,7 @@ def run_raster(*, quick: bool = False) -> list[dict]:
         ("100,000 small triangles", random_triangles(100_000 // scale, 12.0, 2), True),
         ("100 stars of 50 vertices", random_stars(100 // scale, 50, 3), False),
     ]
-    cv2 = _opencv()
+    cv2 = optional_module("cv2")
     rows = []
     print(f"raster benchmark: {SIZE}x{SIZE}, corner sampling, subpixel_bits=8 (median of runs)")
     header = f"{'scene':<26}{'scanviz ms':>11}{'Msmp/s':>9}"

@@ -8,6 +8,7 @@ import numpy as np
 
 from .. import area_coverage
 from ..abuffer.masks import MASK_LAYOUTS
+from ..bench import optional_module
 from . import exact
 from .cases import (
     AREA_TOLERANCE,
@@ -25,7 +26,7 @@ from .cases import (
 
 def exact_coverage(rng: np.random.Generator) -> Outcome:
     """area_coverage against exact Fraction clipping of the polygon to each pixel."""
-    shapely = _shapely()
+    shapely = optional_module("shapely")
     tally, pixels, polygons = Tally(), 0, 0
     size = 8
     for k in range(24):
@@ -60,14 +61,6 @@ def exact_coverage(rng: np.random.Generator) -> Outcome:
             )
     note = " (+ shapely)" if shapely is not None else " (shapely not installed)"
     return tally.outcome(f"{thousands(pixels)} pixels / {thousands(polygons)} polygons{note}")
-
-
-def _shapely():
-    try:
-        import shapely
-    except ImportError:
-        return None
-    return shapely
 
 
 def _shapely_coverage(shapely, contours, size: int) -> np.ndarray:

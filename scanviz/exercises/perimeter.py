@@ -437,21 +437,16 @@ EXERCISE_TEST = register(
 )
 
 
-MERGE_SOLUTION = """\
-def perimeter_merge(top, bottom, right, left, bbuf):
-    for x, y in bbuf:
-        top[x] = max(top[x], y)
-        bottom[x] = min(bottom[x], y)
-        right[y] = max(right[y], x)
-        left[y] = min(left[y], x)
-"""
-
 MERGE_UPDATES = """\
         top[x] = max(top[x], y)
         bottom[x] = min(bottom[x], y)
         right[y] = max(right[y], x)
         left[y] = min(left[y], x)
 """
+
+MERGE_SOLUTION = (
+    "def perimeter_merge(top, bottom, right, left, bbuf):\n    for x, y in bbuf:\n" + MERGE_UPDATES
+)
 
 OVERWRITTEN = """\
         top[x] = y

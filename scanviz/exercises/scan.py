@@ -28,11 +28,20 @@ IDEA_CONVENTIONS = (
 )
 
 
-def _scan(inputs, tracer, **replaced):
-    with steps.using(**replaced):
-        return scan_convert(
-            inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=tracer
-        )
+def _scan_with(step: str):
+    """The exercise's call: scan convert the case's polygon with `step` replaced by `fn`."""
+
+    def call(fn, inputs, tracer):
+        with steps.using(**{step: fn}):
+            return scan_convert(
+                inputs["polygon"],
+                inputs["width"],
+                inputs["height"],
+                rule=inputs["rule"],
+                trace=tracer,
+            )
+
+    return call
 
 
 def _case(label: str, vertices: list, width: int, height: int, rule: str = "nonzero") -> Case:
@@ -319,10 +328,6 @@ def _scan_features(*names: str) -> dict:
 # --- 5: the span rule ------------------------------------------------------------------------
 
 
-def _scan_with_span_rule(fn, inputs, tracer):
-    return _scan(inputs, tracer, span_rule=fn)
-
-
 def _row_of_call(index: int, trace: list) -> str:
     rows = [e.y for e in trace if e.kind == "aet_sorted"]
     return f"row {rows[index]}" if index < len(rows) else f"call {index + 1}"
@@ -385,7 +390,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=SPAN_RULE_SOLUTION,
-        call=_scan_with_span_rule,
+        call=_scan_with("span_rule"),
         reference=span_rule,
         public=(
             _case("triangle", [[0, 0], [6, 0], [6, 5]], 8, 6),
@@ -478,10 +483,6 @@ register(
 # --- 3: the edge-table entry ---------------------------------------------------------------
 
 
-def _scan_with_entry(fn, inputs, tracer):
-    return _scan(inputs, tracer, edge_table_entry=fn)
-
-
 def _edge_of_call(index: int, trace: list) -> str:
     tables = [e for e in trace if e.kind == "edge_table_built"]
     if not tables or index >= len(tables[0].edges):
@@ -537,7 +538,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=ENTRY_SOLUTION,
-        call=_scan_with_entry,
+        call=_scan_with("edge_table_entry"),
         reference=edge_table_entry,
         public=(UMBC, OFF_GRID, PENTAGRAM, BELOW),
         generate=_span_case,
@@ -619,10 +620,6 @@ register(
 # --- 4: the per-row AET update --------------------------------------------------------------
 
 
-def _scan_with_aet_update(fn, inputs, tracer):
-    return _scan(inputs, tracer, aet_update=fn)
-
-
 def _scanned_row_of_call(index: int, trace: list) -> str:
     rows = sorted({e.y for e in trace if e.kind in ("aet_sorted", "edges_retired")})
     return f"row {rows[index]}" if index < len(rows) else f"call {index + 1}"
@@ -674,7 +671,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=AET_SOLUTION,
-        call=_scan_with_aet_update,
+        call=_scan_with("aet_update"),
         reference=aet_update,
         public=(UMBC, PENTAGRAM, OFF_GRID, BELOW),
         generate=_span_case,

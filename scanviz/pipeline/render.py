@@ -25,7 +25,7 @@ from collections.abc import Mapping
 import numpy as np
 from numba import njit, prange
 
-from .. import buffers, steps
+from .. import steps
 from ..conventions import SAMPLE_MODES, check_choice, check_raster_size, check_subpixel_bits
 from ..limits import check_memory
 from ..raster.api import as_tracer
@@ -319,7 +319,7 @@ def _opaque(
 
 def _gathered_image(polygon, colors, values, background):
     """(H, W, 3): each pixel's polygon's color (flat), else its values (Gouraud), else the background."""
-    image = buffers.empty((*polygon.shape, 3))
+    image = np.empty((*polygon.shape, 3))
     shared = use_threads(polygon.size, shade.PARALLEL_PIXELS)
     gather = _gather_shared if shared else _gather_here
     gather(polygon, colors, values, background, image)

@@ -42,7 +42,7 @@ from fractions import Fraction
 import numpy as np
 from numba import njit, prange
 
-from .. import buffers, steps
+from .. import steps
 from ..threads import use_threads
 from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
 from .fixed import SnappedPolygon
@@ -203,7 +203,7 @@ def vertex_channels(values: np.ndarray, inv_w: np.ndarray, perspective: bool) ->
     if not perspective:
         return np.array(values, dtype=np.float64)
     values, inv_w = np.asarray(values, np.float64), np.asarray(inv_w, np.float64)
-    out = buffers.empty((len(values), values.shape[1] + 1))
+    out = np.empty((len(values), values.shape[1] + 1))
     (_over_w_shared if use_threads(len(values), PARALLEL_VERTICES) else _over_w_here)(
         values, inv_w, out
     )

@@ -25,18 +25,10 @@ import numbers
 
 import numpy as np
 
-from ..conventions import short_repr
+from ..conventions import as_array, check_int, short_repr
 
 MAX_RING_STEPS = 4096
 """Largest number of steps per segment (a 12,288-colour ring; the dissertation's largest is 192)."""
-
-
-def _steps(steps: object) -> int:
-    if isinstance(steps, bool) or not isinstance(steps, numbers.Integral):
-        raise TypeError(f"'steps' must be an int; got {short_repr(steps)}")
-    if not 1 <= steps <= MAX_RING_STEPS:
-        raise ValueError(f"'steps' must be in 1..{MAX_RING_STEPS}; got {short_repr(steps)}")
-    return int(steps)
 
 
 def _size(size: object) -> int:
@@ -49,10 +41,7 @@ def _size(size: object) -> int:
 
 def _phases(name: str, value: object) -> np.ndarray:
     """`value` as a float64 array of phases in [-pi, pi] (the range of numpy.angle)."""
-    try:
-        phases = np.array(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name!r} must be an array of numbers; got {short_repr(value)}") from None
+    phases = as_array(value, f"{name!r} must be an array of numbers", copy=True)
     bad = np.argwhere(~(np.abs(phases) <= math.pi))  # also catches NaN
     if bad.size:
         where = tuple(int(i) for i in bad[0])
@@ -99,7 +88,7 @@ def colour_ring(steps: int = 64) -> np.ndarray:
     >>> colour_ring(64).shape
     (192, 3)
     """
-    steps = _steps(steps)
+    steps = check_int("steps", steps, 1, MAX_RING_STEPS)
     t = np.arange(steps) / steps
     zero = np.zeros(steps)
     segments = ((t, 1 - t, zero), (1 - t, zero, t), (zero, t, 1 - t))  # G->R, R->B, B->G
@@ -212,12 +201,7 @@ def replace_entry(ring: object, entry: int, marker: object = (1.0, 1.0, 1.0)) ->
     >>> replace_entry(colour_ring(1), 2).tolist()
     [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 1.0]]
     """
-    try:
-        marked = np.array(ring, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"'ring' must be an (N, 3) array of numbers; got {short_repr(ring)}"
-        ) from None
+    marked = as_array(ring, "'ring' must be an (N, 3) array of numbers", copy=True)
     if marked.ndim != 2 or marked.shape[1] != 3 or len(marked) == 0:
         raise ValueError(f"'ring' must be an (N, 3) array with N >= 1; got shape {marked.shape}")
     if not ((marked >= 0) & (marked <= 1)).all():

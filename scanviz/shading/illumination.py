@@ -32,7 +32,7 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 from numba import njit
 
-from ..conventions import check_finite, check_finite_rows
+from ..conventions import as_array, check_finite, check_finite_rows, type_name
 from ..scene.faces import FaceCorners, face_corners, newell
 from ..scene.model import Light, Material
 from ..trace import Tracer
@@ -96,12 +96,7 @@ def material_array(materials: Iterable[Material]) -> np.ndarray:
 
 
 def _rows(name: str, value: object, columns: int, count: int | None = None) -> np.ndarray:
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"{name!r} must be an array of numbers; got {type(value).__name__}"
-        ) from None
+    array = as_array(value, f"{name!r} must be an array of numbers", got=type_name)
     if array.ndim != 2 or array.shape[1] != columns:
         raise ValueError(f"{name!r} must be an (N, {columns}) array; got shape {array.shape}")
     if count is not None and len(array) != count:
@@ -110,10 +105,7 @@ def _rows(name: str, value: object, columns: int, count: int | None = None) -> n
 
 
 def _vector(name: str, value: object, size: int = 3) -> np.ndarray:
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name!r} must be {size} numbers; got {value!r}") from None
+    array = as_array(value, f"{name!r} must be {size} numbers", got=repr)
     if array.shape != (size,):
         raise ValueError(f"{name!r} must have shape ({size},); got {array.shape}")
     return check_finite(name, array)

@@ -15,7 +15,6 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .. import buffers
 from ..threads import use_threads
 from ..vectors import _SAFE_HIGH, _SAFE_LOW
 
@@ -67,7 +66,7 @@ def shade_image(polygon, values, eye, view_dir, kinds, vectors, colors, ambient_
     """
     flat = values.reshape(-1, values.shape[-1])
     ids = polygon.ravel()
-    out = buffers.empty((len(ids), 3))
+    out = np.empty((len(ids), 3))
     shade = _shade_image_shared if use_threads(len(ids), PARALLEL_POINTS) else _shade_image_here
     shade(ids, flat[:, 3:6], flat[:, 0:3], flat[:, 6:15], eye, view_dir, kinds, vectors, colors, ambient_light, background, out)  # fmt: skip
     return out.reshape(*polygon.shape, 3)

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from ..conventions import check_choice, check_finite, finite_real
+from ..conventions import as_array, check_choice, check_finite, finite_real
 from ..geometry import as_coordinates
 from ..trace.events import RationalForms  # the trace's record is the domain record
 from .illumination import _vector
@@ -90,10 +90,7 @@ def _direction(name: str, value: object) -> np.ndarray:
 
 
 def _normals(value: object) -> np.ndarray:
-    try:
-        array = np.array(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"'normals' must be a (3, 3) array of numbers; got {value!r}") from None
+    array = as_array(value, "'normals' must be a (3, 3) array of numbers", copy=True, got=repr)
     if array.shape != (3, 3):
         raise ValueError(
             f"'normals' must be a (3, 3) array (one row per vertex); got {array.shape}"

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..conventions import short_repr
+from ..conventions import as_array, short_repr
 from ..scene.model import Material, Scene, SceneObject
 from ..shading.colour_ring import colour_ring, replace_entry, triangle_ring_index
 from .grid import GridSurface, _check_points, _count, _interval, _uniform_axis
@@ -245,12 +245,7 @@ def complex_surface(
     _pole_on_grid(function, x, y)
     grid_x, grid_y = np.meshgrid(x, y)
     returned = function(grid_x + 1j * grid_y)
-    try:
-        values = np.asarray(returned, dtype=np.complex128)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"'function' must return complex numbers; got {short_repr(returned)}"
-        ) from None
+    values = as_array(returned, "'function' must return complex numbers", dtype=np.complex128)
     if values.shape != grid_x.shape:
         raise ValueError(
             f"'function' must return an array of the grid's shape (Ny, Nx) = {grid_x.shape}; "

@@ -25,6 +25,7 @@ from typing import TextIO
 
 import numpy as np
 
+from ..conventions import as_array
 from ..limits import (
     ResourceLimitError,
     check_memory,
@@ -47,10 +48,7 @@ def _check_points(nx: int, ny: int, what: str, per_point: int = _BYTES_PER_POINT
 
 def _axis(name: str, value: object) -> np.ndarray:
     """`value` as a read-only, finite, strictly increasing float64 vector of >= 2 entries."""
-    try:
-        axis = np.array(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name!r} must be a 1-D array of numbers; got {value!r}") from None
+    axis = as_array(value, f"{name!r} must be a 1-D array of numbers", copy=True, got=repr)
     if axis.ndim != 1 or axis.size < 2:
         raise ValueError(
             f"{name!r} must be a 1-D array of at least 2 values; got shape {axis.shape}"

@@ -92,11 +92,6 @@ class ZBufferComparison:
     structural: np.ndarray
 
     @property
-    def point_mismatch(self) -> float:
-        """The fraction of raster points the FPA and the z-buffer decide differently."""
-        return (self.false_hidden + self.false_visible) / max(self.points, 1)
-
-    @property
     def exact(self) -> bool:
         """No point and no pixel decided differently."""
         return self.false_hidden == self.false_visible == self.facet_mismatch == 0

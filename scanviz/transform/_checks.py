@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..conventions import check_finite_rows
+from ..conventions import as_array, check_finite_rows, type_name
 from ..scene import Camera
 from ..scene.faces import face_corners
 from ..trace import Tracer
@@ -14,12 +14,7 @@ def as_points(
     name: str, value: object, columns: tuple[int, ...] | None, min_rows: int = 0
 ) -> np.ndarray:
     """`value` as a finite (N, k) float64 array with k in `columns` (None: any k), else an error."""
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"{name!r} must be an array of numbers; got {type(value).__name__}"
-        ) from None
+    array = as_array(value, f"{name!r} must be an array of numbers", got=type_name)
     if array.ndim != 2 or (columns is not None and array.shape[1] not in columns):
         wanted = " or ".join(f"(N, {k})" for k in columns or ("K",))
         raise ValueError(f"{name!r} must be an {wanted} array; got shape {array.shape}")

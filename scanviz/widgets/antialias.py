@@ -36,7 +36,7 @@ from ..antialias.line import canonical
 from ..antialias.peers import (
     band_rectangle,
 )
-from ..conventions import short_repr
+from ..conventions import as_array, short_repr
 from ..geometry import as_coordinates
 from ..trace import Trace
 from ._common import WIDEST, fmt, html_table, new_figure, note_label, pixel_region, say
@@ -131,7 +131,24 @@ class DislopView:
         self.exact_steps = [x for _, x in kept] if exact_events else None
         self._skipped = len(events) - len(kept)
         self._read_columns()
+        self._build_figure(p0, p1)
+        self.text = widgets.HTML(layout={"flex": "1 1 380px"})
+        self.note = note_label(note)
+        self._canvas = figure_widget(self.figure)
+        self.widget = widgets.VBox(
+            [
+                self.note,
+                widgets.HBox(
+                    [self._canvas, self.text],
+                    layout={"align_items": "flex-start", "flex_flow": "row wrap"},
+                ),
+            ]
+        )
+        self.step = 0
+        self.show(0)
 
+    def _build_figure(self, p0: np.ndarray, p1: np.ndarray) -> None:
+        """The coverage so far over the pixel grid, the band, the line and the step's markers."""
         fig, (ax,) = new_figure(1, width=6.0, height=5.4)
         self.region = pixel_region(np.vstack([p0, p1]), self.width, self.height, 2)
         self.coverage = ax.imshow(
@@ -160,7 +177,7 @@ class DislopView:
         ax.set(xlim=self.region[:2], ylim=self.region[2:], aspect="equal")
         ax.tick_params(labelsize=9)
         ax.set_title(
-            f"DISLOP_L ({'exact band' if exact else 'printed formula'}): coverage so far",
+            f"DISLOP_L ({'exact band' if self.exact else 'printed formula'}): coverage so far",
             fontsize=9,
         )
         fig.tight_layout()
@@ -172,20 +189,6 @@ class DislopView:
             for role in ROLES
         }  # fmt: skip
         self.figure, self.ax = fig, ax
-        self.text = widgets.HTML(layout={"flex": "1 1 380px"})
-        self.note = note_label(note)
-        self._canvas = figure_widget(fig)
-        self.widget = widgets.VBox(
-            [
-                self.note,
-                widgets.HBox(
-                    [self._canvas, self.text],
-                    layout={"align_items": "flex-start", "flex_flow": "row wrap"},
-                ),
-            ]
-        )
-        self.step = 0
-        self.show(0)
 
     def _pixels(self, event) -> dict[str, tuple[int, int]]:
         """The raster pixel of each role in `event`'s column (the spill on the side of dxy)."""
@@ -675,12 +678,7 @@ def plot_period_table(m: float, levels: int = 64, period: int | None = None):
 
 
 def _check_image(name: str, image: object) -> np.ndarray:
-    try:
-        values = np.asarray(image, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"{name!r} must be an (H, W) or (H, W, 3) float array; got {short_repr(image)}"
-        ) from None
+    values = as_array(image, f"{name!r} must be an (H, W) or (H, W, 3) float array")
     if not (values.ndim == 2 or (values.ndim == 3 and values.shape[2] == 3)):
         raise ValueError(f"{name!r} must be an (H, W) or (H, W, 3) array; got shape {values.shape}")
     if not np.isfinite(values).all() or ((values < 0) | (values > 1)).any():

@@ -102,7 +102,17 @@ class FastPhongView:
         self.width, self.height = max(width, 1), max(height, 1)  # an empty raster: one blank pixel
         self._offset = sample_offset(sample)
         self._read_samples(exact)
+        self._build_figure(vertices)
+        self.text = widgets.HTML()
+        self.coefficients = widgets.HTML(self._coefficients_table())
+        self.note = note_label(note)
+        self._canvas = figure_widget(self.figure)
+        self.widget = widgets.VBox([self.note, self._canvas, self.text, self.coefficients])
+        self.step = 0
+        self.show(0)
 
+    def _build_figure(self, vertices: np.ndarray) -> None:
+        """Fast Phong so far beside its error, over the pixel grid, with the pixel markers."""
         fig, (ax_fast, ax_error) = new_figure(2, width=WIDEST, height=4.4)
         region = pixel_region(vertices, self.width, self.height, 1)
         extent = (0, self.width, 0, self.height)
@@ -140,31 +150,9 @@ class FastPhongView:
         expansion = self.setup.expansion if self.setup is not None else "vertex"
         ax_fast.set_title(f"fast Phong so far (expansion about the {expansion})", fontsize=9)
         ax_error.set_title("|fast − exact Phong|, max over r, g, b", fontsize=9)
-        handles = [
-            Line2D([], [], color="crimson", lw=1.2, label="triangle"),
-            Line2D(
-                [],
-                [],
-                ls="",
-                marker="*",
-                ms=10,
-                mfc="deepskyblue",
-                mec="black",
-                label="expansion point",
-            ),
-            Patch(fc="none", ec="black", lw=2, label="current pixel (dot: its sample)"),
-            Patch(fc=UNSHADED, ec="0.7", label="covered, not shaded yet"),
-        ]
-        fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=9)
+        _add_legend(fig)
         fig.tight_layout(rect=(0, 0.07, 1, 1))
         self.figure, self.axes = fig, (ax_fast, ax_error)
-        self.text = widgets.HTML()
-        self.coefficients = widgets.HTML(self._coefficients_table())
-        self.note = note_label(note)
-        self._canvas = figure_widget(fig)
-        self.widget = widgets.VBox([self.note, self._canvas, self.text, self.coefficients])
-        self.step = 0
-        self.show(0)
 
     def _read_samples(self, exact: ShadedTriangle) -> None:
         """Index the samples once: position, fast colour, exact colour, error, per step."""
@@ -398,3 +386,23 @@ def fast_phong_stepper(
     if note:
         say(view.note, note)
     return Stepper(view.steps, [view], title="fast Phong: one sample per step")
+
+
+def _add_legend(fig) -> None:
+    """The legend under both panels: triangle, expansion point, current pixel, unshaded."""
+    handles = [
+        Line2D([], [], color="crimson", lw=1.2, label="triangle"),
+        Line2D(
+            [],
+            [],
+            ls="",
+            marker="*",
+            ms=10,
+            mfc="deepskyblue",
+            mec="black",
+            label="expansion point",
+        ),
+        Patch(fc="none", ec="black", lw=2, label="current pixel (dot: its sample)"),
+        Patch(fc=UNSHADED, ec="0.7", label="covered, not shaded yet"),
+    ]
+    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=9)

@@ -102,7 +102,16 @@ class ZBufferView:
         note: str = "",
     ) -> None:
         self.trace, self.result = trace, result
-        height, width = result.depth.shape
+        self._read_tests(trace)
+        self._palette = self._polygon_colors(result)
+        self._background = np.asarray(background, np.float64)[:3]
+        self.step = 0
+        self._build_figure(result, region)
+        self._build_controls(pixel, note)
+        self.show(0)
+
+    def _read_tests(self, trace: Trace) -> None:
+        """The trace's depth tests as parallel arrays: event index, x, y, z, polygon, passed."""
         tests = [(i, e) for i, e in enumerate(trace) if e.kind == "depth_test"]
         self._index = np.array([i for i, _ in tests], np.int64)
         self._x = np.array([e.x for _, e in tests], np.int64)
@@ -110,10 +119,10 @@ class ZBufferView:
         self._z = np.array([e.z for _, e in tests], np.float64)
         self._polygon = np.array([e.polygon for _, e in tests], np.int64)
         self._passed = np.array([e.passed for _, e in tests], bool)
-        self._palette = self._polygon_colors(result)
-        self._background = np.asarray(background, np.float64)[:3]
-        self.step = 0
 
+    def _build_figure(self, result: RenderResult, region) -> None:
+        """Depth so far, colour so far and the final image, with the step and pixel markers."""
+        height, width = result.depth.shape
         fig, (ax_depth, ax_color, ax_final) = new_figure(3, width=WIDEST, height=3.0)
         extent = (0, width, 0, height)
         finite = self._z[np.isfinite(self._z)]
@@ -151,6 +160,8 @@ class ZBufferView:
         fig.tight_layout()
         fig.canvas.mpl_connect("button_press_event", self._clicked)
 
+    def _build_controls(self, pixel: tuple[int, int] | None, note: str) -> None:
+        """The pixel box, the follow checkbox, the history and the layout around the figure."""
         self.follow = widgets.Checkbox(
             value=pixel is None, description="follow the step", indent=False
         )
@@ -168,7 +179,7 @@ class ZBufferView:
         self.history = widgets.HTML()
         self.status = status_label()
         self.note = note_label(note)
-        self._canvas = figure_widget(fig)
+        self._canvas = figure_widget(self.figure)
         self.widget = widgets.VBox(
             [
                 self.note,
@@ -177,7 +188,6 @@ class ZBufferView:
                 self.history,
             ]
         )
-        self.show(0)
 
     @staticmethod
     def _polygon_colors(result: RenderResult) -> dict[int, np.ndarray]:
