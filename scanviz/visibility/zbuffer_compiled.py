@@ -18,7 +18,6 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from .. import buffers
 from ..raster import interpolate as formulas
 from ..raster.walk_compiled import (
     CEIL,
@@ -215,7 +214,7 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     """
     # np.zeros here, not in numba: the pages of a large buffer are zeroed by the system as
     # they are first written (calloc), so the values of pixels never drawn cost nothing.
-    values = buffers.zeros((height, width, value_count))
+    values = np.zeros((height, width, value_count))
     planes, first_row, stop_row, skipped = _polygon_rows(
         units, positions, z, offsets, scale, width, height
     )
@@ -225,8 +224,8 @@ def zbuffer_polygons(units, positions, z, channels, offsets, scale, width, heigh
     threads = (
         numba.get_num_threads() if use_threads(len(listed) + height * width, PARALLEL_WORK) else 1
     )
-    depth = buffers.empty((height, width))
-    ids = buffers.empty((height, width), np.int64)
+    depth = np.empty((height, width))
+    ids = np.empty((height, width), np.int64)
     thread_stats = np.zeros((threads, STAT_FIELDS), np.int64)
     drew = np.zeros(len(offsets) - 1, np.bool_)
     draw = _draw_bands if threads > 1 else _draw_bands_here
