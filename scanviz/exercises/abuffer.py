@@ -133,11 +133,16 @@ def _depth(rng: random.Random, feature: str) -> tuple[float, float]:
     return z, z + rng.randint(0, 3) / 8
 
 
-def _pixel_rows(rng: random.Random, x: int, y: int, feature: str, surfaces) -> list[dict]:
+def _pixel_rows(
+    rng: random.Random, x: int, y: int, feature: str, surfaces, gap: bool = False
+) -> list[dict]:
     """1-4 fragments of pixel (x, y) in drawing order, weighted towards `feature`.
 
     Each fragment is a new surface (object id from the iterator `surfaces`); some get
     their surface's other part, the rest of the pixel, a fragment to combine with.
+    With `gap`, a "one surface split" case leaves a sample of the rest uncovered, so
+    the two parts stay two fragments of one surface (they combine only when they
+    fill the pixel) and reach the packer as such.
     """
     rows = []
     for _ in range(rng.randint(1, 4)):
@@ -154,6 +159,8 @@ def _pixel_rows(rng: random.Random, x: int, y: int, feature: str, surfaces) -> l
         rows.append(fragment(x, y, mask, z, color, surface, area=area, zmax=zmax, opacity=opacity))
         if mask != FULL and (feature == "one surface split" or rng.random() < 0.15):
             other = (FULL ^ mask) | (mask & rng.getrandbits(16) if rng.random() < 0.3 else 0)
+            if gap and feature == "one surface split" and (FULL ^ mask).bit_count() > 1:
+                other &= ~(1 << rng.choice([b for b in range(16) if (FULL ^ mask) >> b & 1]))
             z, zmax = _depth(rng, feature)
             rows.append(fragment(x, y, other, z, color, surface, zmax=zmax, opacity=opacity))
     return rows
@@ -170,13 +177,17 @@ def _interleaved(rng: random.Random, pixels: list[list[dict]]) -> list[dict]:
     return rows
 
 
-def _generator(features: tuple[str, ...]):
+def _generator(features: tuple[str, ...], gap: bool = False):
+    """Cases of 2-3 by 1-3 pixels for `features` (`gap`: see `_pixel_rows`)."""
+
     def generate(rng: random.Random, feature: str | None = None) -> Case:
         feature = feature or rng.choice(features)
         width, height = rng.randint(2, 3), rng.randint(1, 3)
         surfaces = itertools.count()
         pixels = [
-            _pixel_rows(rng, x, y, feature, surfaces) for y in range(height) for x in range(width)
+            _pixel_rows(rng, x, y, feature, surfaces, gap)
+            for y in range(height)
+            for x in range(width)
         ]
         background = rng.choice(BACKGROUNDS)
         return Case(
@@ -681,7 +692,9 @@ def pack_pixel(fragments, full, samples, weights, background):
         call=_resolve_with("pack_pixel"),
         reference=pack_pixel,
         public=PACK_CASES,
-        generate=_generator(("layers", "one surface split", "transparency", "depth ties")),
+        generate=_generator(
+            ("layers", "one surface split", "transparency", "depth ties"), gap=True
+        ),
         **feature_tests(PACK_FEATURES),
         variants=(
             _pack_variant(
