@@ -12,23 +12,13 @@ from fractions import Fraction
 
 import pytest
 
-from scanviz import scan_convert, steps
-from scanviz.catalog import get
+from scanviz import steps
 from scanviz.exercises.scan_checks import checked_aet_update
 from scanviz.raster.scanline import AetItem, aet_update, edge_table_entry
 
+from ..raster.test_scanline_steps import _aet_x, _trace
+
 F = Fraction
-UMBC = get("umbc_example")
-
-
-def _trace(**replaced):
-    with steps.using(**replaced):
-        return scan_convert(UMBC.polygon, UMBC.width, UMBC.height, trace=True).trace
-
-
-def _aet_x(trace, y):
-    (row,) = [e for e in trace.of_kind("aet_sorted") if e.y == y]
-    return [entry.x_exact for entry in row.entries]
 
 
 def test_a_replacement_is_called_through_its_check_and_others_as_they_are():
