@@ -309,14 +309,15 @@ def _fragment_values(sx, sy, channels, low, high, perspective, px, py, out, row,
 
 
 @njit(cache=True)
-def _polygon_coverage(p, xy, offsets, window, width, height, cols, rows, bits, cast, at, masks_out,
-                      areas_out):  # fmt: skip
-    """Polygon p's masks and clipped areas over its window, row by row, into cells at, at + 1, ...
+def _polygon_coverage(q, xy, offsets, windows, first, width, height, cols, rows, bits, cast, cells,
+                      masks_out, areas_out):  # fmt: skip
+    """Polygon p = first + q's masks and clipped areas over its window, row by row, into its cells.
 
     Returns how many cells hold a fragment (a set bit or an area above 0),
     or -1 (REFERENCE: the cells are not written).
     """
-    lo, hi = offsets[p], offsets[p + 1]
+    p = first + q
+    window, lo, hi = windows[p], offsets[p], offsets[p + 1]
     if window[0] == window[1] or window[2] == window[3] or not has_three_distinct(xy[lo:hi]):
         return 0
     grid = _snapped(xy[lo:hi], bits)
@@ -324,7 +325,7 @@ def _polygon_coverage(p, xy, offsets, window, width, height, cols, rows, bits, c
     area_row0, areas, within = _window_areas(grid, width, height, window)
     if not (exact and within):
         return -1
-    count, cell = 0, at
+    count, cell = 0, cells[q]
     for y in range(window[0], window[1]):
         for x in range(window[2], window[3]):
             mask = masks[y - window[0], x - window[2]]
@@ -338,11 +339,14 @@ def _polygon_coverage(p, xy, offsets, window, width, height, cols, rows, bits, c
 
 
 @njit(cache=True)
-def _polygon_into(p, xy, z, inv_w, values, offsets, window, cols, rows, bits, perspective,
-                  row_counts, row_totals, masks, areas, at, base, out):  # fmt: skip
-    """Polygon p's fragments from its window's cells (at, at + 1, ...) into rows base, ... of `out`."""
+def _polygon_into(q, xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective,
+                  row_counts, row_totals, cells, masks, areas, made, starts, out):  # fmt: skip
+    """Polygon p = first + q's fragments from its window's cells into rows starts[q], ... of `out`."""
+    if made[q] <= 0:
+        return  # no fragments, or REFERENCE
     x_out, y_out, polygon_out, mask_out, area_out, zmin_out, zmax_out, values_out = out
-    lo, hi = offsets[p], offsets[p + 1]
+    p = first + q
+    window, lo, hi = windows[p], offsets[p], offsets[p + 1]
     grid = _snapped(xy[lo:hi], bits)
     sx, sy, zs = grid[:, 0], grid[:, 1], z[lo:hi]
     _, _, c, dzdx, dzdy, z_first = depth_plane(sx, sy, zs)
@@ -359,7 +363,7 @@ def _polygon_into(p, xy, z, inv_w, values, offsets, window, cols, rows, bits, pe
     for k in range(k_values):
         low[k], high[k] = values[lo:hi, k].min(), values[lo:hi, k].max()
     scratch = np.empty((3, max(n, k_values + 1)))
-    count, cell = base, at
+    count, cell = starts[q], cells[q]
     for y in range(window[0], window[1]):
         for x in range(window[2], window[3]):
             mask, area = masks[cell], areas[cell]
@@ -397,44 +401,32 @@ def _polygon_into(p, xy, z, inv_w, values, offsets, window, cols, rows, bits, pe
 def _coverage_shared(xy, offsets, windows, first, width, height, cols, rows, bits, cast, cells,
                      masks, areas, made):  # fmt: skip
     for q in prange(len(made)):
-        made[q] = _polygon_coverage(
-            first + q, xy, offsets, windows[first + q], width, height, cols, rows, bits, cast,
-            cells[q], masks, areas,
-        )  # fmt: skip
+        made[q] = _polygon_coverage(q, xy, offsets, windows, first, width, height, cols, rows,
+                                    bits, cast, cells, masks, areas)  # fmt: skip
 
 
 @njit(cache=True)
 def _coverage_here(xy, offsets, windows, first, width, height, cols, rows, bits, cast, cells,
                    masks, areas, made):  # fmt: skip
     for q in range(len(made)):
-        made[q] = _polygon_coverage(
-            first + q, xy, offsets, windows[first + q], width, height, cols, rows, bits, cast,
-            cells[q], masks, areas,
-        )  # fmt: skip
+        made[q] = _polygon_coverage(q, xy, offsets, windows, first, width, height, cols, rows,
+                                    bits, cast, cells, masks, areas)  # fmt: skip
 
 
 @njit(cache=True, parallel=True)
 def _fill_shared(xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective,
-                 cells, masks, areas, made, starts, out):  # fmt: skip
-    row_counts, row_totals = row_sums(cols)
+                 row_counts, row_totals, cells, masks, areas, made, starts, out):  # fmt: skip
     for q in prange(len(made)):
-        if made[q] > 0:
-            _polygon_into(
-                first + q, xy, z, inv_w, values, offsets, windows[first + q], cols, rows, bits,
-                perspective, row_counts, row_totals, masks, areas, cells[q], starts[q], out,
-            )  # fmt: skip
+        _polygon_into(q, xy, z, inv_w, values, offsets, windows, first, cols, rows, bits,
+                      perspective, row_counts, row_totals, cells, masks, areas, made, starts, out)  # fmt: skip
 
 
 @njit(cache=True)
 def _fill_here(xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective,
-               cells, masks, areas, made, starts, out):  # fmt: skip
-    row_counts, row_totals = row_sums(cols)
+               row_counts, row_totals, cells, masks, areas, made, starts, out):  # fmt: skip
     for q in range(len(made)):
-        if made[q] > 0:
-            _polygon_into(
-                first + q, xy, z, inv_w, values, offsets, windows[first + q], cols, rows, bits,
-                perspective, row_counts, row_totals, masks, areas, cells[q], starts[q], out,
-            )  # fmt: skip
+        _polygon_into(q, xy, z, inv_w, values, offsets, windows, first, cols, rows, bits,
+                      perspective, row_counts, row_totals, cells, masks, areas, made, starts, out)  # fmt: skip
 
 
 PARALLEL_WORK = 2**12  # polygons plus window pixels in a chunk: below this, one thread works
@@ -478,8 +470,8 @@ def chunk_fragments(
         np.empty((count, values.shape[1])),
     )  # fmt: skip
     fill = _fill_shared if shared else _fill_here
-    fill(xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective, cells,
-         masks, areas, made, starts, out)  # fmt: skip
+    fill(xy, z, inv_w, values, offsets, windows, first, cols, rows, bits, perspective,
+         *row_sums(cols), cells, masks, areas, made, starts, out)  # fmt: skip
     return (count, starts, status, *out)
 
 

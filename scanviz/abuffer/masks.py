@@ -216,23 +216,22 @@ def pixel_masks(
            [1, 1, 0, 0],
            [1, 1, 1, 0]])
     """
-    polygon = Polygon(polygon)
-    width, height = check_raster_size(width, height)
-    cols, rows = _layout(mask)
-    check_choice("rule", rule, RULES)
-    bits = check_subpixel_bits(subpixel_bits)
-    tracer = as_tracer(trace)
-    if tracer is not None:
+    if trace is not None and trace is not False:  # the traced mask buffer checks the arguments
         return mask_buffer_rows(
             polygon,
             width,
             height,
             mask=mask,
             rule=rule,
-            subpixel_bits=bits,
-            trace=tracer,
+            subpixel_bits=subpixel_bits,
+            trace=trace,
             polygon_index=polygon_index,
         )
+    polygon = Polygon(polygon)
+    width, height = check_raster_size(width, height)
+    cols, rows = _layout(mask)
+    check_choice("rule", rule, RULES)
+    bits = check_subpixel_bits(subpixel_bits)
     scaled = subsample_polygon(polygon, mask, bits)
     spans, _ = scan_snapped(scaled, width * cols, height * rows, rule=rule)
     return MaskResult(*_gather_spans(spans, mask, width), mask)

@@ -46,7 +46,7 @@ import numpy as np
 from ..pipeline import render
 from ..progress import progress
 from ..surfaces import GridSurface, View, floating_horizon, floating_perimeter
-from ..surfaces.grid import gaussian_height
+from ..surfaces.grid import _count, gaussian_height
 from .visibility import FIT_FLOOR, growth_exponent
 
 GRIDS = (10, 20, 30, 40, 50, 60, 100, 200)  # points per side
@@ -125,11 +125,7 @@ SCANVIZ_PURPOSES = (
 
 def _check_sizes(**sizes: object) -> None:
     for name, value in sizes.items():
-        low = 1 if name in ("hr", "vr") else 2
-        if isinstance(value, bool) or not isinstance(value, int | np.integer):
-            raise TypeError(f"{name!r} must be an int; got {value!r}")
-        if value < low:
-            raise ValueError(f"{name!r} must be >= {low}; got {value}")
+        _count(name, value, 1 if name in ("hr", "vr") else 2)  # grid points >= 2, pixels >= 1
 
 
 def fha_storage(nx: int, hr: int) -> dict[str, int]:

@@ -107,6 +107,11 @@ def _sized(**fields) -> Callable[[], st.SearchStrategy]:
     return lambda: st.fixed_dictionaries({k: v() for k, v in fields.items()})
 
 
+def _on_raster(options: Callable, **shape) -> Callable[[], st.SearchStrategy]:
+    """`_sized` of a raster entry point's shape argument, then width, height and `options`."""
+    return _sized(**shape, width=sizes, height=sizes, options=options)
+
+
 ENTRY_POINTS: dict[str, EntryPoint] = {
     "Polygon": EntryPoint(_sized(contours=polygon_inputs), check_polygon),
     "scan_convert": EntryPoint(lambda: scan_convert_args(False), check_scan_convert, share=1.5),
@@ -114,31 +119,24 @@ ENTRY_POINTS: dict[str, EntryPoint] = {
         lambda: scan_convert_args(True), check_scan_convert, share=1.5
     ),
     "fill_polygons": EntryPoint(
-        _sized(
+        _on_raster(
+            lambda: raster_options(True),
             polygons=lambda: st.one_of(st.lists(polygon_inputs(), max_size=3), polygon_inputs()),
-            width=sizes,
-            height=sizes,
-            options=lambda: raster_options(True),
         ),
         check_fill_polygons,
-    ),  # fmt: skip
+    ),
     "rasterize_triangles": EntryPoint(
-        _sized(
+        _on_raster(
+            lambda: raster_options(False),
             triangles=lambda: st.one_of(
                 st.lists(triangle_inputs(), max_size=3), odd_arrays(), oddballs()
             ),
-            width=sizes,
-            height=sizes,
-            options=lambda: raster_options(False),
         ),
         check_rasterize_triangles,
-    ),  # fmt: skip
+    ),
     "triangle_samples": EntryPoint(
-        _sized(
-            triangle=triangle_inputs,
-            width=sizes,
-            height=sizes,
-            options=lambda: st.fixed_dictionaries(
+        _on_raster(
+            lambda: st.fixed_dictionaries(
                 {},
                 optional={
                     "sample": option_values(("corner", "center")),
@@ -146,16 +144,14 @@ ENTRY_POINTS: dict[str, EntryPoint] = {
                     "polygon": st.one_of(st.integers(0, 3), oddballs()),
                 },
             ),
+            triangle=triangle_inputs,
         ),
         check_triangle_samples,
-    ),  # fmt: skip
+    ),
     "midpoint_line": EntryPoint(_sized(ends=line_ends), check_midpoint_line),
     "area_coverage": EntryPoint(
-        _sized(
-            polygon=polygon_inputs, width=sizes, height=sizes, options=lambda: raster_options(True)
-        ),
-        check_area_coverage,
-    ),  # fmt: skip
+        _on_raster(lambda: raster_options(True), polygon=polygon_inputs), check_area_coverage
+    ),
     "scene dict + render": EntryPoint(
         _sized(scene=scene_dicts, mode=lambda: st.integers(0, 11)),
         check_scene_dict,

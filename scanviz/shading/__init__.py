@@ -7,6 +7,7 @@ Flat, Gouraud and Phong shading differ only in where the pipeline evaluates
 or once per pixel (interpolating normals). See docs/shading.md.
 """
 
+from . import fast_phong
 from .colour_ring import (
     MAX_RING_STEPS,
     colour_ring,
@@ -16,22 +17,7 @@ from .colour_ring import (
     triangle_ring_index,
 )
 from .edges import feature_edges
-from .fast_phong import (
-    RationalForms,
-    ReflectionModel,
-    ShadedTriangle,
-    TaylorCoefficients,
-    channel_quadratics,
-    evaluate_quadratic,
-    exact_phong_triangle,
-    fast_phong_triangle,
-    forward_differences,
-    half_angle_gap,
-    halfway_vector,
-    normal_plane,
-    rational_forms,
-    taylor_coefficients,
-)
+from .fast_phong import *  # noqa: F403 -- fast Phong and its Taylor algebra, as `fast_phong.__all__` lists them
 from .gooch import gooch
 from .illumination import (
     MATERIAL_FIELDS,
@@ -54,20 +40,7 @@ from .lut import (
 __all__ = [
     "MATERIAL_FIELDS",
     "MAX_RING_STEPS",
-    "RationalForms",
-    "ReflectionModel",
-    "ShadedTriangle",
-    "TaylorCoefficients",
-    "channel_quadratics",
-    "evaluate_quadratic",
-    "exact_phong_triangle",
-    "fast_phong_triangle",
-    "forward_differences",
-    "half_angle_gap",
-    "halfway_vector",
-    "normal_plane",
-    "rational_forms",
-    "taylor_coefficients",
+    *fast_phong.__all__,
     "colour_ring",
     "lut_level",
     "lut_level_coherent",
