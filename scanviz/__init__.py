@@ -8,6 +8,7 @@ from .abuffer import area_coverage
 from .geometry import Polygon
 from .io import load_scene
 from .pipeline import RenderResult, render
+from .progress import announce_compiling
 from .raster import (
     ScanResult,
     TriangleSamples,
@@ -18,7 +19,6 @@ from .raster import (
     triangle_samples,
 )
 from .trace import Recorder, Trace, Tracer
-from .warmup import announce_compiling
 
 announce_compiling()  # a one-line note, not silence, when a kernel compiles
 

@@ -11,6 +11,7 @@ Jupyter kernel interrupt stops them at the next chunk with
 from __future__ import annotations
 
 import contextlib
+import sys
 from collections.abc import Iterator
 
 
@@ -37,3 +38,25 @@ def progress(total: int, desc: str, *, threshold: int = 0, enabled: bool | None 
 
     with tqdm(total=total, desc=desc, unit="", leave=False, mininterval=0.5) as bar:
         yield bar
+
+
+NOTE = "scanviz: compiling kernels (first run only; `python -m scanviz warmup` does it ahead)"
+_announced = False
+
+
+def announce_compiling() -> None:
+    """Print `NOTE` once, the first time numba compiles a kernel in this process."""
+    from numba.core import event
+
+    class Listener(event.Listener):
+        def on_start(self, event_: object) -> None:
+            global _announced
+            if not _announced:
+                _announced = True
+                stream = sys.stdout if "ipykernel" in sys.modules else sys.stderr
+                print(NOTE, file=stream, flush=True)
+
+        def on_end(self, event_: object) -> None:
+            pass
+
+    event.register("numba:compile", Listener())

@@ -12,8 +12,8 @@ every source file and, for the files that changed, drops the cached kernels
 of those files and of every module that imports them (directly or not), and
 nothing else.
 
-`announce_compiling()` prints a one-line note the first time a kernel
-compiles in a process, so a cold cache is never a silent stall.
+`scanviz.progress.announce_compiling()` prints a one-line note the first time
+a kernel compiles in a process, so a cold cache is never a silent stall.
 """
 
 from __future__ import annotations
@@ -21,14 +21,12 @@ from __future__ import annotations
 import ast
 import hashlib
 import json
-import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 STAMP_NAME = "warmup-sources.json"
-NOTE = "scanviz: compiling kernels (first run only; `python -m scanviz warmup` does it ahead)"
 
 
 def _raster() -> None:
@@ -310,24 +308,3 @@ def record_sources(package: Path = PACKAGE) -> None:
     stamp = _stamp(package)
     stamp.parent.mkdir(parents=True, exist_ok=True)
     stamp.write_text(json.dumps(source_hashes(package), indent=0, sort_keys=True))
-
-
-_announced = False
-
-
-def announce_compiling() -> None:
-    """Print `NOTE` once, the first time numba compiles a kernel in this process."""
-    from numba.core import event
-
-    class Listener(event.Listener):
-        def on_start(self, event_: object) -> None:
-            global _announced
-            if not _announced:
-                _announced = True
-                stream = sys.stdout if "ipykernel" in sys.modules else sys.stderr
-                print(NOTE, file=stream, flush=True)
-
-        def on_end(self, event_: object) -> None:
-            pass
-
-    event.register("numba:compile", Listener())

@@ -8,6 +8,7 @@ import textwrap
 import pytest
 
 from scanviz import warmup
+from scanviz.progress import NOTE
 
 SOURCES = {
     "__init__.py": "",
@@ -97,5 +98,5 @@ def test_a_compile_prints_one_line_instead_of_silence(tmp_path):
         [sys.executable, "probe.py"], cwd=tmp_path, env=env, capture_output=True, text=True
     )
     assert first.stdout == again.stdout == "7\n"
-    assert first.stderr.count(warmup.NOTE) == 1
-    assert warmup.NOTE not in again.stderr  # loaded from the cache: nothing compiles
+    assert first.stderr.count(NOTE) == 1
+    assert NOTE not in again.stderr  # loaded from the cache: nothing compiles

@@ -21,6 +21,8 @@ pieces are computed apart, and their sum misses 1 by a few ulps.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 from numba import njit
 
@@ -120,13 +122,11 @@ def _merge_cluster(rows, zmin, zmax, area, mask, color, full, keep):
 
 def merge_by_object(fragments, width, height, full):
     """(`Fragments` with each pixel's per-object clusters merged, the number of fragments merged away)."""
-    from .resolve import Fragments
-
     pixels = fragments.y * width + fragments.x
-    fields = {name: np.array(getattr(fragments, name)) for name in Fragments.__dataclass_fields__}
+    fields = {f.name: np.array(getattr(fragments, f.name)) for f in dataclasses.fields(fragments)}
     keep = merge_kernel(
         pixels, width * height, fields["object"], fields["opacity"], fields["zmin"],
         fields["zmax"], fields["area"], fields["mask"], fields["color"], np.uint64(full),
     )  # fmt: skip
-    merged = Fragments(**{name: value[keep] for name, value in fields.items()})
+    merged = type(fragments)(**{name: value[keep] for name, value in fields.items()})
     return merged, fragments.count - merged.count

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..trace import Recorder
-from .jail.session import AnswerRaised, RemoteAnswer
+from .jail.session import AnswerRaised, RemoteAnswer, TraceOverflow
 from .jail.wire import Opaque, decode, encode
 
 KINDS = ("step", "loop")
@@ -163,10 +163,6 @@ class Outcome:
 def normalized(value: object) -> object:
     """`value` as its plain form reads back (tuples stay tuples; records of other classes Fields)."""
     return decode(encode(value))
-
-
-class TraceOverflow(BaseException):
-    """A case emitted more events than it may (a BaseException: no loop's except catches it)."""
 
 
 class CappedRecorder(Recorder):

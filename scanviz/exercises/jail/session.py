@@ -41,6 +41,10 @@ BATCH = 500  # forced calls sent in one request
 EXIT_SECONDS = 5.0  # a runner whose channel closed has this long to exit before it is killed
 
 
+class TraceOverflow(BaseException):
+    """A case emitted more events than it may (a BaseException: no loop's except catches it)."""
+
+
 @dataclass(frozen=True)
 class Limits:
     """The runner's limits (a `CourseKey` has the same three fields).
@@ -379,8 +383,6 @@ class RemoteAnswer:
             return False, f"ValueError: the grader cannot take what the answer gave: {error}"
 
     def _emit(self, reply: dict, decoder: wire.Decoder, tracer) -> None:
-        from ..core import TraceOverflow
-
         events = reply.get("events", [])
         if not isinstance(events, list):
             raise wire.WireError("'events' must be a list")
