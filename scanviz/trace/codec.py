@@ -5,7 +5,7 @@ numbers with every bit kept (`repr`), non-finite ones as the strings
 ``"inf"``, ``"-inf"``, ``"nan"`` (the output is strict JSON); a
 `fractions.Fraction` as the string ``"p/q"``; tuples as lists; nested
 records as objects. Reading is driven by each event class's annotations
-(`scanviz.trace.schema`), so ``trace_from_json(trace_to_json(t)) == t``
+(`scanviz.trace.schema`), so ``Trace.from_json(t.to_json()) == t``
 exactly, and malformed text raises a ValueError naming the JSON path and
 the rule, before anything large is built: text over the file limit, or
 nested deeper than `MAX_DEPTH`, or holding a number of more than `DIGITS`
@@ -40,15 +40,12 @@ from ..limits import (
 from .events import EVENT_TYPES, Event
 from .schema import DIGITS, Invalid, Nested, shown
 
-if typing.TYPE_CHECKING:
-    from .recorder import Trace
-
 FORMAT_VERSION = 2
-"""The version `trace_to_json` writes: 2 added the ``"version"`` key; its events carry the
+"""The version `events_to_json` writes: 2 added the ``"version"`` key; its events carry the
 stages' own records (a triangle's edges are `EdgeFunction`s, without an index)."""
 
 READABLE = (1, 2)
-"""The versions `trace_from_json` reads; a file without ``"version"`` is version 1."""
+"""The versions `events_from_json` reads; a file without ``"version"`` is version 1."""
 
 _EVENT_NODES = {kind: Nested(cls) for kind, cls in EVENT_TYPES.items()}
 MAX_DEPTH = 2 + max(node.depth for node in _EVENT_NODES.values())
@@ -78,9 +75,9 @@ def encode(value: object) -> object:
     return value
 
 
-def trace_to_json(trace: typing.Iterable[Event], **dumps_options: object) -> str:
+def events_to_json(events: typing.Iterable[Event], **dumps_options: object) -> str:
     """The JSON text of a sequence of events; `dumps_options` go to `json.dumps`."""
-    data = {"version": FORMAT_VERSION, "events": [encode(e) for e in trace]}
+    data = {"version": FORMAT_VERSION, "events": [encode(e) for e in events]}
     return json.dumps(data, **dumps_options)  # type: ignore[arg-type]
 
 
@@ -212,25 +209,23 @@ def parse(text: object) -> object:
         raise ValueError(f"trace JSON is not valid JSON: {error}") from None
 
 
-def trace_from_json(text: str) -> Trace:
-    """Read a trace from its JSON text (`Trace.from_json`).
+def events_from_json(text: str) -> list[Event]:
+    """The events of a trace's JSON text (`Trace.from_json`).
 
-    Every outcome is the Trace or a ValueError naming the JSON path and the
+    Every outcome is the list of events or a ValueError naming the JSON path and the
     rule broken (TypeError if `text` is not a str).
 
     Examples
     --------
-    >>> trace_from_json('{"version": 2, "events": [{"kind": "span", "polygon": 0, "y": 1, "x_start": 2, "x_end": 5, "winding": 1}]}')
-    Trace(1 events: {'span': 1})
-    >>> trace_from_json('{"events": []}')  # version 1: no "version" key
-    Trace(0 events: {})
-    >>> trace_from_json('{"events": [{"kind": "span", "polygon": 0, "y": 1.5, "x_start": 2, "x_end": 5, "winding": 1}]}')
+    >>> events_from_json('{"version": 2, "events": [{"kind": "span", "polygon": 0, "y": 1, "x_start": 2, "x_end": 5, "winding": 1}]}')
+    [Span(polygon=0, y=1, x_start=2, x_end=5, winding=1)]
+    >>> events_from_json('{"events": []}')  # version 1: no "version" key
+    []
+    >>> events_from_json('{"events": [{"kind": "span", "polygon": 0, "y": 1.5, "x_start": 2, "x_end": 5, "winding": 1}]}')
     Traceback (most recent call last):
     ...
     ValueError: trace JSON at events[0].y: must be int; got 1.5 (float)
     """
-    from .recorder import Trace
-
     data = parse(text)
     if not isinstance(data, dict) or not isinstance(data.get("events"), list):
         raise ValueError(
@@ -254,4 +249,4 @@ def trace_from_json(text: str) -> Trace:
             events.append(event_from_dict(item, version))
         except Invalid as error:
             raise ValueError(f"trace JSON at events[{index}]{error.path()}: {error.rule}") from None
-    return Trace(events)
+    return events

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..conventions import check_raster_size
 from ..limits import check_memory
+from .codec import events_from_json, events_to_json
 from .display import trace_html
 from .events import EVENT_TYPES, Event
 from .schema import shown
@@ -204,16 +205,12 @@ class Trace(Sequence[Event]):
         return image
 
     def to_json(self, **dumps_options: object) -> str:
-        from .codec import trace_to_json
-
-        return trace_to_json(self, **dumps_options)
+        return events_to_json(self, **dumps_options)
 
     @classmethod
     def from_json(cls, text: str) -> Trace:
         """Read a trace from JSON text; malformed text raises a ValueError naming the JSON path.
 
-        See `scanviz.trace.codec.trace_from_json` and docs/trace-format.md.
+        See `scanviz.trace.codec.events_from_json` and docs/trace-format.md.
         """
-        from .codec import trace_from_json
-
-        return trace_from_json(text)
+        return cls(events_from_json(text))
