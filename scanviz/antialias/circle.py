@@ -72,22 +72,15 @@ def dislop_disk(center: object, radius: float, width: int, height: int, *, trace
 
     Parameters
     ----------
-    center : (2,) array_like of float
-        The centre (x, y) in pixels, within +-2**20.
     radius : float
         In 0..2**20.
-    width, height : int
-        Raster size in pixels, in 0..2**16.
-    trace : None, True or Tracer
-        None runs the compiled kernel; a tracer gets one ``dislop_column`` per
-        tangent, two per column, then two per row (True: a new Recorder,
-        returned with the image).
+    center, width, height, trace
+        As `dislop_circle`.
 
     Returns
     -------
     (height, width) ndarray of float64
-        Covered area of each pixel, row 0 at the bottom; with ``trace=True``
-        the pair (image, Trace).
+        Covered area of each pixel, as `dislop_circle`.
 
     Raises
     ------
@@ -153,20 +146,27 @@ def _in_sector(axis: int, side: int, j: int, minor_centre: float, across: float)
 _in_sector_compiled = njit(cache=True)(_in_sector)
 
 
-def _tangent(radius: float, across: float) -> tuple[float, float]:
-    """(along, slope) of the tangent used at distance `across` from the centre, across the walk.
+def _column(i, major_centre, minor_centre, minor_size, radius):
+    """(across, along, slope, low_j, high_j) of column (row) i: its tangent and the pixels to visit.
 
-    Up to 45 degrees the tangent at the column centre; past it the tangent at
-    the 45-degree point (slope 1), the polygon's side there: a column tangent
-    steeper than 1 would sweep the whole column, far from where it touches.
+    `across` is the column's distance from the centre, `along` the tangent
+    point's. Up to 45 degrees the tangent at the column centre; past it the
+    tangent at the 45-degree point (slope 1), the polygon's side there: a
+    column tangent steeper than 1 would sweep the whole column, far from
+    where it touches.
     """
+    across = abs(i - major_centre)
     if across <= radius * HALF_SQRT2:
         along = math.sqrt(radius * radius - across * across)
-        return along, across / along
-    return radius * SQRT2 - across, 1.0
+        slope = across / along
+    else:
+        along, slope = radius * SQRT2 - across, 1.0
+    low_j = max(0, math.floor(minor_centre - along - 3.0))
+    high_j = min(minor_size - 1, math.ceil(minor_centre + along + 3.0))
+    return across, along, slope, low_j, high_j
 
 
-_tangent_compiled = njit(cache=True)(_tangent)
+_column_compiled = njit(cache=True)(_column)
 
 
 def _walk(cx, cy, radius, shape, axis):
@@ -177,11 +177,7 @@ def _walk(cx, cy, radius, shape, axis):
     first = max(0, math.floor(major_centre - radius - 1.0))  # a pixel further off is outside
     last = min(major_size - 1, math.ceil(major_centre + radius + 1.0))
     for i in range(first, last + 1):
-        across = abs(i - major_centre)
-        along, slope = _tangent(radius, across)
-        low_j = max(0, math.floor(minor_centre - along - 3.0))
-        high_j = min(minor_size - 1, math.ceil(minor_centre + along + 3.0))
-        yield i, minor_centre, across, along, slope, low_j, high_j
+        yield i, minor_centre, *_column(i, major_centre, minor_centre, minor_size, radius)
 
 
 def _round_reference(cx, cy, radius, ring, image, tracer) -> None:
@@ -224,10 +220,9 @@ def _round_kernel(cx, cy, radius, ring, image):  # pragma: no cover - compiled `
         first = max(0, math.floor(major_centre - radius - 1.0))
         last = min(major_size - 1, math.ceil(major_centre + radius + 1.0))
         for i in range(first, last + 1):
-            across = abs(i - major_centre)
-            along, slope = _tangent_compiled(radius, across)
-            low_j = max(0, math.floor(minor_centre - along - 3.0))
-            high_j = min(minor_size - 1, math.ceil(minor_centre + along + 3.0))
+            across, along, slope, low_j, high_j = _column_compiled(
+                i, major_centre, minor_centre, minor_size, radius
+            )
             for side in (1, -1):
                 centre = side * minor_centre + along
                 row = math.ceil(centre - 0.5)

@@ -31,13 +31,13 @@ from ..raster.scan_compiled import has_three_distinct
 from ..trace.events import DislopColumn
 from . import columns
 from ._inputs import as_tracer, finish, new_raster
-from .line import canonical, raster_pixel
+from .line import canonical, raster_pixel, raster_pixel_compiled
 
 SIDE_STEP = 1e-7  # how far beside a piece's midpoint its two sides are tested for inside
 # Per pixel: the image and hit counts (8 + 8), the marks (1 + 1), the scan-converted mask (1).
 PIXEL_BYTES = 19
-PLUS, MINUS, MIXED = 1, 2, 4
-CENTRE_MARGIN = 1e-6  # a fill sample this close to a crossing is decided by `scan_convert`  # which pieces touch a pixel: winding 0|+1, 0|-1, anything else
+PLUS, MINUS, MIXED = 1, 2, 4  # which pieces touch a pixel: winding 0|+1, 0|-1, anything else
+CENTRE_MARGIN = 1e-6  # a fill sample this close to a crossing is decided by `scan_convert`
 
 
 def dislop_edge(polygon: object, width: int, height: int, *, trace: object = None):
@@ -76,9 +76,9 @@ def dislop_edge(polygon: object, width: int, height: int, *, trace: object = Non
     tracer = as_tracer(trace)
     image = new_raster(width, height, "dislop_edge", PIXEL_BYTES)
     height, width = image.shape
+    starts = polygon.vertices
+    ends = np.concatenate([np.roll(c, -1, axis=0) for c in polygon.contours])
     if tracer is None:
-        starts = polygon.vertices
-        ends = np.concatenate([np.roll(c, -1, axis=0) for c in polygon.contours])
         unsure, deferred = _edge_kernel(starts, ends, polygon.offsets, image)
         if unsure:  # a fill pixel whose centre is within rounding of an edge: decide it exactly
             inside = scan_convert(polygon, width, height, sample="center", subpixel_bits=None).mask
@@ -88,16 +88,14 @@ def dislop_edge(polygon: object, width: int, height: int, *, trace: object = Non
             image[y, x] = _exact_area(polygon, int(x), int(y))
     else:
         inside = scan_convert(polygon, width, height, sample="center", subpixel_bits=None).mask
-        _edge_reference(polygon, inside, image, tracer)
+        _edge_reference(polygon, starts, ends, inside, image, tracer)
     return finish(image, trace, tracer)
 
 
-def _edge_reference(polygon: Polygon, inside: np.ndarray, image: np.ndarray, tracer) -> None:
+def _edge_reference(polygon: Polygon, starts, ends, inside, image, tracer) -> None:
     hits = np.zeros(image.shape, dtype=np.int64)  # boundary pieces cutting each pixel
     needs_exact = np.zeros(image.shape, dtype=bool)
     touched = np.zeros(image.shape, dtype=np.int8)  # PLUS | MINUS | MIXED of all pieces
-    starts = polygon.vertices
-    ends = np.concatenate([np.roll(c, -1, axis=0) for c in polygon.contours])
     for a, b in _pieces(starts, ends):
         left, right = (_winding(p, starts, ends) for p in _beside(a, b))
         kind = PLUS if {left, right} == {0, 1} else MINUS if {left, right} == {0, -1} else MIXED
@@ -338,8 +336,7 @@ def _walk_piece_compiled(ax, ay, bx, by, flag, kind, image, hits, needs_exact, t
         cut = 2 if branch == 1 and cv > 0.0 else 1
         for k in range(cut):
             r, area = (row, mid) if k == 0 else (neighbour, up + low)
-            r = -r if flip else r
-            x, y = (r, column) if steep else (column, r)
+            x, y = raster_pixel_compiled(column, r, steep, flip)
             if 0 <= x < image.shape[1] and 0 <= y < image.shape[0]:
                 touched[y, x] |= kind
                 if flag >= 0:
@@ -352,8 +349,7 @@ def _walk_piece_compiled(ax, ay, bx, by, flag, kind, image, hits, needs_exact, t
         left, right = max(u0, column - 0.5), min(u1, column + 0.5)
         low_v, high_v = v0 + (left - u0) * slope, v0 + (right - u0) * slope
         for row in range(math.ceil(low_v - 0.5), math.floor(high_v + 0.5) + 1):
-            r = -row if flip else row
-            x, y = (r, column) if steep else (column, r)
+            x, y = raster_pixel_compiled(column, row, steep, flip)
             _mark(touched, needs_exact, x, y, kind, flag >= 0)
     for x, y in ((ax, ay), (bx, by)):
         for py in range(max(math.ceil(y) - 1, 0), min(math.floor(y), image.shape[0] - 1) + 1):

@@ -178,13 +178,15 @@ def raster_pixel(column: int, row: int, steep: bool, flip: bool) -> tuple[int, i
     return (row, column) if steep else (column, row)
 
 
+raster_pixel_compiled = njit(cache=True, inline="always")(raster_pixel)
+
+
 @njit(cache=True)
 def _put(image, column, row, value, steep, flip):  # pragma: no cover - compiled
     """Add `value` at first-octant pixel (column, row) if it is on the raster."""
     if value == 0.0:
         return
-    row = -row if flip else row
-    x, y = (row, column) if steep else (column, row)
+    x, y = raster_pixel_compiled(column, row, steep, flip)
     if 0 <= x < image.shape[1] and 0 <= y < image.shape[0]:
         image[y, x] += value
 

@@ -1,11 +1,16 @@
 """The classic line anti-aliasers, beside DISLOP_L: Wu, Gupta-Sproull, supersampling, masks, exact area.
 
-Every function draws the same 1-pixel-wide segment p0-p1 (the band of width 1
-centred on it, flat ends at the endpoints, as `dislop_line`) and returns the
-(height, width) float64 coverage, row 0 at the bottom, pixel (x, y) the unit
-square [x, x+1] x [y, y+1] (DESIGN §2). The loops are compiled (numba) so
-that the benchmark compares algorithms, not interpreters; `exact_band_line`
-and `abuffer_line` call scanviz's own compiled area and mask code.
+Every line function draws the same 1-pixel-wide segment p0-p1 (the band of
+width 1 centred on it, flat ends at the endpoints, as `dislop_line`) on a
+``width`` x ``height`` raster and returns the (height, width) float64
+coverage, row 0 at the bottom, pixel (x, y) the unit square [x, x+1] x
+[y, y+1] (DESIGN §2). The endpoints ``p0, p1`` are (2,) array_like of float,
+(x, y) in pixels within +-2**20, the size ints in 0..2**16; anything else
+raises a TypeError or ValueError naming the argument. The docstrings below
+list only their functions' further parameters and errors. The loops are
+compiled (numba) so that the benchmark compares algorithms, not
+interpreters; `exact_band_line` and `abuffer_line` call scanviz's own
+compiled area and mask code.
 
 * `wu_line`: Xiaolin Wu (1991), real endpoints: the centre line's height at
   each major-axis pixel centre is split between the two nearest pixels by its
@@ -57,23 +62,10 @@ GS_STEPS = 16  # Gupta-Sproull table entries per pixel of distance
 def wu_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
     """Xiaolin Wu's anti-aliased line (1991), with real endpoints.
 
-    Parameters
-    ----------
-    p0, p1 : (2,) array_like of float
-        Endpoints (x, y) in pixels, within +-2**20.
-    width, height : int
-        Raster size in pixels, in 0..2**16.
-
     Returns
     -------
     (height, width) ndarray of float64
         Intensity of each pixel in [0, 1], row 0 at the bottom.
-
-    Raises
-    ------
-    TypeError, ValueError
-        If an endpoint is not two finite real numbers within +-2**20, or the
-        size is not an int in 0..2**16.
 
     Notes
     -----
@@ -104,6 +96,17 @@ def wu_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
 
 
 @njit(cache=True, inline="always")
+def _along_major_axis(u0, v0, u1, v1):
+    """(steep, u0, v0, u1, v1): the segment with u the major axis (x and y swapped if steep), u0 <= u1."""
+    steep = abs(v1 - v0) > abs(u1 - u0)
+    if steep:
+        u0, v0, u1, v1 = v0, u0, v1, u1
+    if u0 > u1:
+        u0, v0, u1, v1 = u1, v1, u0, v0
+    return steep, u0, v0, u1, v1
+
+
+@njit(cache=True, inline="always")
 def _plot(image, steep, major, minor, value):
     column, row = (minor, major) if steep else (major, minor)
     if 0 <= row < image.shape[0] and 0 <= column < image.shape[1]:
@@ -121,11 +124,7 @@ def _plot_pair(image, steep, major, v, weight):
 
 @njit(cache=True)
 def _wu_kernel(u0, v0, u1, v1, image):  # pragma: no cover - compiled
-    steep = abs(v1 - v0) > abs(u1 - u0)
-    if steep:
-        u0, v0, u1, v1 = v0, u0, v1, u1
-    if u0 > u1:
-        u0, v0, u1, v1 = u1, v1, u0, v0
+    steep, u0, v0, u1, v1 = _along_major_axis(u0, v0, u1, v1)
     gradient = (v1 - v0) / (u1 - u0) if u1 > u0 else 1.0
     first, last = math.floor(u0 + 0.5), math.floor(u1 + 0.5)
     if first == last:  # both ends in one column: the part of it the segment spans
@@ -173,23 +172,10 @@ GS_TABLE = np.array([cone_band_volume(i / GS_STEPS) for i in range(3 * GS_STEPS 
 def gupta_sproull_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
     """Gupta-Sproull's filtered line (1981): the midpoint line, three pixels a column, a cone filter.
 
-    Parameters
-    ----------
-    p0, p1 : (2,) array_like of float
-        Endpoints (x, y) in pixels, within +-2**20.
-    width, height : int
-        Raster size in pixels, in 0..2**16.
-
     Returns
     -------
     (height, width) ndarray of float64
         Intensity of each pixel in [0, 0.78], row 0 at the bottom.
-
-    Raises
-    ------
-    TypeError, ValueError
-        If an endpoint is not two finite real numbers within +-2**20, or the
-        size is not an int in 0..2**16.
 
     Notes
     -----
@@ -224,11 +210,7 @@ def gupta_sproull_line(p0: object, p1: object, width: int, height: int) -> np.nd
 
 @njit(cache=True)
 def _gupta_sproull_kernel(u0, v0, u1, v1, table, steps, image):  # pragma: no cover - compiled
-    steep = abs(v1 - v0) > abs(u1 - u0)
-    if steep:
-        u0, v0, u1, v1 = v0, u0, v1, u1
-    if u0 > u1:
-        u0, v0, u1, v1 = u1, v1, u0, v0
+    steep, u0, v0, u1, v1 = _along_major_axis(u0, v0, u1, v1)
     if u1 == u0 and v1 == v0:
         return
     gradient = (v1 - v0) / (u1 - u0)
@@ -252,10 +234,6 @@ def supersampled_line(p0: object, p1: object, width: int, height: int, k: int = 
 
     Parameters
     ----------
-    p0, p1 : (2,) array_like of float
-        Endpoints (x, y) in pixels, within +-2**20.
-    width, height : int
-        Raster size in pixels, in 0..2**16.
     k : int in 1..64
         Samples per pixel side, at (x + (i + 1/2)/k, y + (j + 1/2)/k).
 
@@ -267,8 +245,8 @@ def supersampled_line(p0: object, p1: object, width: int, height: int, k: int = 
     Raises
     ------
     TypeError, ValueError
-        If an endpoint is not two finite real numbers within +-2**20, the size
-        is not an int in 0..2**16, or `k` is not an int in 1..64.
+        If `k` is not an int in 1..64, or another argument breaks a rule of
+        the module docstring.
 
     Notes
     -----
@@ -365,24 +343,11 @@ def band_rectangle(p0: object, p1: object, width: int, height: int) -> np.ndarra
 def exact_band_line(p0: object, p1: object, width: int, height: int) -> np.ndarray:
     """The exact area of each pixel inside the 1-wide band: `area_coverage` of its rectangle.
 
-    Parameters
-    ----------
-    p0, p1 : (2,) array_like of float
-        Endpoints (x, y) in pixels, within +-2**20.
-    width, height : int
-        Raster size in pixels, in 0..2**16.
-
     Returns
     -------
     (height, width) ndarray of float64
         Covered area of each pixel, row 0 at the bottom; it sums to |p1 - p0|
         when the band lies on the raster.
-
-    Raises
-    ------
-    TypeError, ValueError
-        If an endpoint is not two finite real numbers within +-2**20, or the
-        size is not an int in 0..2**16.
 
     Examples
     --------
@@ -412,10 +377,6 @@ def abuffer_line(
 
     Parameters
     ----------
-    p0, p1 : (2,) array_like of float
-        Endpoints (x, y) in pixels, within +-2**20.
-    width, height : int
-        Raster size in pixels, in 0..2**16.
     mask : {"8x8", "8x4", "4x4"}
         Sub-sample layout per pixel (`scanviz.abuffer.masks.MASK_LAYOUTS`).
     subpixel_bits : int in 0..16, or None
@@ -431,9 +392,8 @@ def abuffer_line(
     Raises
     ------
     TypeError, ValueError
-        If an endpoint is not two finite real numbers within +-2**20, the size
-        is not an int in 0..2**16, `mask` is not a layout, or `subpixel_bits`
-        is not an int in 0..16 or None.
+        If `mask` is not a layout, `subpixel_bits` is not an int in 0..16 or
+        None, or another argument breaks a rule of the module docstring.
 
     Examples
     --------

@@ -31,12 +31,12 @@ import numpy as np
 from numba import njit
 
 from .. import steps
-from ..conventions import as_array, short_repr
+from ..conventions import as_array, check_choice, short_repr
 from ..geometry import as_coordinates
 from ..trace.events import PostColumn
 from . import columns, tables
 from ._inputs import as_tracer, finish
-from .line import canonical, raster_pixel
+from .line import canonical, raster_pixel, raster_pixel_compiled
 
 
 def post_antialias(
@@ -99,15 +99,12 @@ def post_antialias(
     """
     out = _check_image(image)
     segments = as_coordinates(segments, "'segments'", ("N", 2, 2))
-    if kind not in ("line", "edge"):
-        raise ValueError(f"'kind' must be 'line' or 'edge'; got {short_repr(kind)}")
+    check_choice("kind", kind, tables.KINDS)
     flags = _check_flags(flags, kind, len(segments))
     color = _check_color(color)
-    if table not in ("area", "intensity"):
-        raise ValueError(f"'table' must be 'area' or 'intensity'; got {short_repr(table)}")
+    check_choice("table", table, ("area", "intensity"))
     levels = tables.check_levels(levels)
-    if recurrence not in ("exact", "simple"):
-        raise ValueError(f"'recurrence' must be 'exact' or 'simple'; got {short_repr(recurrence)}")
+    check_choice("recurrence", recurrence, tables.RECURRENCES)
     if table == "intensity" and out.any():
         raise ValueError("'image' must be black (all 0) with table='intensity'; use table='area'")
     tracer = as_tracer(trace)
@@ -184,21 +181,12 @@ def _segment_reference(
     xs, ys = columns.band_corners(u0, v0, u1, v1, slope)
     work = np.empty((4, 16))
     walk = max(start, 0)  # the recurrence starts at X0 = ixs (Fig 5-2), or at the raster's edge
-    centre = v0 + (walk - u0) * slope
-    row = math.ceil(centre - 0.5)
-    dxy = centre - row
+    row, dxy, _ = tables.first_column(u0, v0, slope, walk)
     i, j = indices_of(slope, dxy) if simple else (0, 0)
     for column in range(first, last + 1):
         while walk < column:  # one step of the recurrence per column
             walk += 1
-            if simple:
-                row += 1 if j + i >= 50 else 0
-                j = (j + i) % 50
-                dxy = -0.5 + j / 50.0
-            else:
-                dxy += slope
-                if dxy > 0.5:
-                    row, dxy = row + 1, dxy - 1.0
+            row, dxy, j = tables.next_column(row, dxy, i, j, slope, simple)
         if not edge and (column <= start + 1 or column >= end - 1):  # a cap column: clip exactly
             _blend_cap(image, column, u0, v0, slope, xs, ys, work, quantum, steep, flip, color)
             continue
@@ -227,8 +215,7 @@ def _blend(image, column, row, area, steep, flip, color):  # pragma: no cover - 
     """out = A * color + (1 - A) * out at first-octant pixel (column, row), if on the raster."""
     if area == 0.0:
         return
-    row = -row if flip else row
-    x, y = (row, column) if steep else (column, row)
+    x, y = raster_pixel_compiled(column, row, steep, flip)
     if 0 <= x < image.shape[1] and 0 <= y < image.shape[0]:
         for c in range(3):
             image[y, x, c] = area * color[c] + (1.0 - area) * image[y, x, c]
@@ -266,23 +253,11 @@ def _segment_kernel(
     xs, ys = columns.band_corners_compiled(u0, v0, u1, v1, slope)
     work = np.empty((4, 16))
     walk = max(start, 0)  # the recurrence starts at X0 = ixs (Fig 5-2), or at the raster's edge
-    centre = v0 + (walk - u0) * slope
-    row = math.ceil(centre - 0.5)
-    dxy = centre - row
-    j = int((dxy + 0.5) * 50 + 0.5)
+    row, dxy, j = tables.first_column_compiled(u0, v0, slope, walk)
     for column in range(first, last + 1):
         while walk < column:  # one step of the recurrence per column
             walk += 1
-            if simple:
-                row += 1 if j + i >= 50 else 0
-                j = (j + i) % 50
-                dxy = -0.5 + j / 50.0
-            else:
-                dxy += slope
-                if dxy > 0.5:
-                    row += 1
-                    dxy -= 1.0
-                j = int((dxy + 0.5) * 50 + 0.5)
+            row, dxy, j = tables.next_column_compiled(row, dxy, i, j, slope, simple)
         if not edge and (column <= start + 1 or column >= end - 1):  # a cap column: clip exactly
             _blend_cap(image, column, u0, v0, slope, xs, ys, work, quantum, steep, flip, color)
             continue

@@ -26,7 +26,9 @@ from ..conventions import check_choice, short_repr
 from ..surfaces import GridSurface, View, floating_perimeter
 from ..surfaces.perimeter import PerimeterResult, visible_runs
 from ..trace.display import RichDisplay
+from .edge_algorithm import dislop_edge
 from .line import dislop_line
+from .post import post_antialias, silhouette_mask
 
 LINE_METHODS = ("dislop", "post", "aliased")
 COMBINE = ("max", "over", "sum")
@@ -259,8 +261,6 @@ def draw_segments(
     check_choice("combine", combine, COMBINE)
     segments = _as_segments(segments)
     if method == "post":
-        from .post import post_antialias  # written alongside; imported when asked for
-
         black = np.zeros((height, width))
         return post_antialias(black, segments, kind="line", table="area")[..., 0]
     coverage = np.zeros((height, width))
@@ -530,8 +530,6 @@ def smoothed_surface(
     if silhouettes == "dislop":
         coverage = _outline_area(surface, view, pieces, flags, width, height)
     elif silhouettes == "post":
-        from .post import post_antialias  # written alongside; imported when asked for
-
         black = np.zeros(covered.shape)
         table = post_antialias(black, pieces, kind="edge", flags=flags, table="area")[..., 0]
         coverage = np.where(table > 0, table, covered.astype(np.float64))
@@ -546,8 +544,6 @@ def smoothed_surface(
         image[boundary] = area * colour[boundary] + (1.0 - area) * background
     inner = np.zeros(covered.shape, dtype=bool)
     if silhouettes != "none" and threshold is not None:
-        from .post import silhouette_mask  # written alongside; imported when asked for
-
         inner = silhouette_mask(aliased, threshold) & ~_grow(boundary)
         image[inner] = _box3(aliased)[inner]
     finished = time.perf_counter()
@@ -560,8 +556,6 @@ def smoothed_surface(
 
 def _outline_area(surface, view, pieces, flags, width, height) -> np.ndarray:
     """DISLOP_E's area of the outline: its loops, or (if they do not close) all the triangles."""
-    from .edge_algorithm import dislop_edge
-
     if len(pieces) == 0:
         return np.zeros((height, width))
     loops = outline_loops(pieces, flags)

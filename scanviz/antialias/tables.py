@@ -18,7 +18,8 @@ Indices follow the dissertation's C (L16068-16073, OCR-fixed in the spec):
 ``i = (int)(|m| * 50 + 0.5)``, ``j = (int)((dxy + 0.5) * 50 + 0.5)``; j = 0 and
 j = 50 are the same configuration, one row apart. `column_indices` walks a
 segment column by column with the dxy recurrence of Fig 5-2 (or the "simpler"
-``j = (j + i) mod 50``). Derivations and measurements: docs/antialiasing.md.
+``j = (j + i) mod 50``), whose steps `first_column` and `next_column` also
+drive `post_antialias`. Derivations and measurements: docs/antialiasing.md.
 """
 
 from __future__ import annotations
@@ -29,9 +30,10 @@ from dataclasses import dataclass
 from functools import cache
 
 import numpy as np
+from numba import njit
 
 from .. import steps
-from ..conventions import short_repr
+from ..conventions import check_choice, check_int, short_repr
 from . import columns
 from ._inputs import check_point
 from .line import canonical
@@ -41,6 +43,8 @@ LEVELS = (16, 64, 256)  # the intensity levels of §4.7
 DISSERTATION_PI = 3.14156  # the tables of §4.7 were computed with this pi (spec §0, by fitting)
 DRIFT_COLUMNS = 60  # `period_rule`: the drift over this many columns stays below one level
 MAX_PERIOD = 2**16  # `period_rule` searches periods 1..MAX_PERIOD
+KINDS = ("line", "edge")  # the tables of DISLOP_L and of DISLOP_E
+RECURRENCES = ("exact", "simple")  # the dxy recurrence of Fig 5-2, or j = (j + i) mod 50
 
 # Tables 4-2 (16 levels), 4-4 (64) and 4-3 (256): the printed period for 0..45 degrees.
 PRINTED_PERIODS = {
@@ -74,11 +78,8 @@ def _check_slope(m: object, name: str = "m") -> float:
 
 
 def check_levels(levels: object) -> int:
-    if isinstance(levels, bool) or not isinstance(levels, numbers.Integral):
-        raise TypeError(f"'levels' must be an int; got {short_repr(levels)}")
-    if not 2 <= levels <= 256:
-        raise ValueError(f"'levels' must be in 2..256 (uint8 intensities); got {levels}")
-    return int(levels)
+    """`levels` as an int in 2..256: the intensities are uint8."""
+    return check_int("levels", levels, 2, 256)
 
 
 def slope_index(m: float) -> int:
@@ -300,17 +301,12 @@ def periodic_table(
     (57, 4.9868, 5, [0, 62, 1])
     """
     m, levels = _check_slope(m), check_levels(levels)
-    if kind not in ("line", "edge"):
-        raise ValueError(f"'kind' must be 'line' or 'edge'; got {short_repr(kind)}")
+    check_choice("kind", kind, KINDS)
     if flag not in (0, 1) or isinstance(flag, bool):
         raise ValueError(f"'flag' must be 0 or 1; got {short_repr(flag)}")
     if period is None:
         period = printed_period(m, levels) or period_rule(m, levels)
-    elif isinstance(period, bool) or not isinstance(period, numbers.Integral):
-        raise TypeError(f"'period' must be an int; got {short_repr(period)}")
-    elif not 1 <= period <= MAX_PERIOD:
-        raise ValueError(f"'period' must be in 1..{MAX_PERIOD}; got {period}")
-    period = int(period)
+    period = check_int("period", period, 1, MAX_PERIOD)
     value = m * period
     n = round(value)
     dxy = -0.5 + np.arange(period + 1) / period
@@ -378,8 +374,7 @@ def column_indices(p0: object, p1: object, recurrence: str = "exact") -> ColumnI
     [25, 9, 43, 27, 11, 45, 29, 13, 47]
     """
     p0, p1 = check_point("p0", p0), check_point("p1", p1)
-    if recurrence not in ("exact", "simple"):
-        raise ValueError(f"'recurrence' must be 'exact' or 'simple'; got {short_repr(recurrence)}")
+    simple = check_choice("recurrence", recurrence, RECURRENCES) == "simple"
     u0, v0, u1, v1, steep, flip = canonical(p0, p1)
     m = (v1 - v0) / (u1 - u0) if u1 > u0 else 0.0
     i = int(m * DIVISIONS + 0.5)
@@ -387,19 +382,48 @@ def column_indices(p0: object, p1: object, recurrence: str = "exact") -> ColumnI
     count = end - start + 1
     x, iy, j = (np.empty(count, dtype=np.int64) for _ in range(3))
     dxy = np.empty(count)
-    centre = v0 + (start - u0) * m  # Y0: the centre line at the start column's centre
-    row = math.ceil(centre - 0.5)
-    d = centre - row
-    index = int((d + 0.5) * DIVISIONS + 0.5)
+    row, d, index = first_column(u0, v0, m, start)
     for k in range(count):
-        if k > 0 and recurrence == "exact":
-            d += m
-            if d > 0.5:
-                row, d = row + 1, d - 1.0
-            index = int((d + 0.5) * DIVISIONS + 0.5)
-        elif k > 0:
-            row += 1 if index + i >= DIVISIONS else 0
-            index = (index + i) % DIVISIONS
+        if k > 0:
+            row, d, index = next_column(row, d, i, index, m, simple)
         x[k], iy[k], j[k] = start + k, row, index
-        dxy[k] = d if recurrence == "exact" else -0.5 + index / DIVISIONS
+        dxy[k] = -0.5 + index / DIVISIONS if simple else d
     return ColumnIndices(x, iy, dxy, i, j, m, steep, flip)
+
+
+def first_column(u0: float, v0: float, m: float, column: int) -> tuple[int, float, int]:
+    """The recurrence's start X0 = `column`: the middle pixel's row, dxy and j there (Fig 5-2).
+
+    >>> first_column(0.0, 0.25, 0.5, 1)
+    (1, -0.25, 13)
+    """
+    centre = v0 + (column - u0) * m  # Y0: the centre line at the column's centre
+    row = math.ceil(centre - 0.5)
+    dxy = centre - row
+    return row, dxy, int((dxy + 0.5) * DIVISIONS + 0.5)
+
+
+def next_column(
+    row: int, dxy: float, i: int, j: int, m: float, simple: bool
+) -> tuple[int, float, int]:
+    """One column of Fig 5-2's recurrence: the next column's (row, dxy, j).
+
+    Exact: ``dxy += m`` (minus 1, row + 1, past 1/2) and j from dxy, as
+    `distance_index`; simple: ``j = (j + i) mod 50`` (row + 1 when it wraps)
+    and dxy = -1/2 + j/50, the table's distance.
+
+    >>> next_column(3, 0.375, 13, 12, 0.25, False), next_column(3, 0.375, 13, 12, 0.25, True)
+    ((4, -0.375, 6), (3, 0.0, 25))
+    """
+    if simple:
+        row += 1 if j + i >= DIVISIONS else 0
+        j = (j + i) % DIVISIONS
+        return row, -0.5 + j / DIVISIONS, j
+    dxy += m
+    if dxy > 0.5:
+        row, dxy = row + 1, dxy - 1.0
+    return row, dxy, int((dxy + 0.5) * DIVISIONS + 0.5)
+
+
+first_column_compiled = njit(cache=True)(first_column)
+next_column_compiled = njit(cache=True)(next_column)
