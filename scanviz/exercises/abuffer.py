@@ -8,13 +8,14 @@ sub-sample (i, j), row 0 at the bottom), a few pixels each.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import random
 
-from .. import steps
 from ..abuffer import Fragments, resolve
 from ..abuffer.pixelstruct import insert_fragment, pack_pixel
+from .cases import call_with_step, place_by_event
 from .catalog import register
 from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
@@ -46,30 +47,6 @@ def case_resolve(inputs: dict, trace=None):
         background=inputs["background"],
         trace=trace,
     )
-
-
-def _resolve_with(step: str):
-    """``call`` of an exercise on `step`: resolve the case's fragments with `fn` as that step."""
-
-    def call(fn, inputs, tracer):
-        with steps.using(**{step: fn}):
-            return case_resolve(inputs, tracer)
-
-    return call
-
-
-def _pixel_of_call(kind: str):
-    """``place``: the pixel of the `index`-th `kind` event of the reference's trace."""
-
-    def place(index: int, trace: list) -> str:
-        events = [e for e in trace if e.kind == kind]
-        if index >= len(events):
-            return f"call {index + 1}"
-        event = events[index]
-        pixel = f"pixel ({event.x}, {event.y})"
-        return f"fragment {event.index} at {pixel}" if kind == "fragment_inserted" else pixel
-
-    return place
 
 
 def _packed(result) -> dict:
@@ -340,8 +317,7 @@ SAME_SURFACE_TESTS = """\
 """
 
 
-def _insert_variant(name: str, hint: str, old: str, new: str) -> Variant:
-    return _variant(INSERT_SOLUTION, name, hint, old, new)
+_insert_variant = functools.partial(_variant, INSERT_SOLUTION)
 
 
 INSERT_CASES = (
@@ -465,7 +441,7 @@ def insert_fragment(fragments, incoming, full):
     raise NotImplementedError
 ''',
         solution=INSERT_SOLUTION,
-        call=_resolve_with("insert_fragment"),
+        call=call_with_step("insert_fragment", case_resolve),
         reference=insert_fragment,
         public=INSERT_CASES,
         generate=_generator(
@@ -543,7 +519,10 @@ def insert_fragment(fragments, incoming, full):
         ),
         kinds=("fragment_inserted", "fragments_merged", "fragments_discarded"),
         step="insert_fragment",
-        place=_pixel_of_call("fragment_inserted"),
+        place=place_by_event(
+            "fragment_inserted",
+            lambda event: f"fragment {event.index} at pixel ({event.x}, {event.y})",
+        ),
         result=_packed,
         rtol=RTOL,
         stepper=(
@@ -594,8 +573,7 @@ def pack_pixel(fragments, full, samples, weights, background):
 """
 
 
-def _pack_variant(name: str, hint: str, old: str, new: str) -> Variant:
-    return _variant(PACK_SOLUTION, name, hint, old, new)
+_pack_variant = functools.partial(_variant, PACK_SOLUTION)
 
 
 PACK_CASES = (
@@ -689,7 +667,7 @@ def pack_pixel(fragments, full, samples, weights, background):
     raise NotImplementedError
 ''',
         solution=PACK_SOLUTION,
-        call=_resolve_with("pack_pixel"),
+        call=call_with_step("pack_pixel", case_resolve),
         reference=pack_pixel,
         public=PACK_CASES,
         generate=_generator(
@@ -742,7 +720,7 @@ def pack_pixel(fragments, full, samples, weights, background):
         ),
         kinds=("pixel_packed",),
         step="pack_pixel",
-        place=_pixel_of_call("pixel_packed"),
+        place=place_by_event("pixel_packed", lambda event: f"pixel ({event.x}, {event.y})"),
         result=_packed,
         rtol=RTOL,
         stepper=(

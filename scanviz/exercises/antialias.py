@@ -25,32 +25,27 @@ the C cast rounds up, Python's round() to even) and Fig 5-1's line.
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
 import numpy as np
 
-from .. import steps
 from ..antialias.columns import LINE_BRANCHES
 from ..antialias.line import dislop_line, middle_column
 from ..antialias.post import post_antialias
 from ..antialias.tables import table_indices
+from .cases import call_with_step, place_by_event
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant, feature_tests
+from .core import Case, Exercise, edited_variant, feature_tests
 
 KINDS = ("dislop_column",)
 CATEGORIES = ("shallow", "medium", "past 0.75", "45 degrees", "horizontal or vertical")
 SIZE = 16  # the raster of the hidden cases
 
 
-def _draw_with(step: str):
-    def call(fn, inputs, tracer):
-        with steps.using(**{step: fn}):
-            return dislop_line(
-                inputs["p0"], inputs["p1"], inputs["width"], inputs["height"], trace=tracer
-            )
-
-    return call
+def _draw(inputs: dict, tracer):
+    return dislop_line(inputs["p0"], inputs["p1"], inputs["width"], inputs["height"], trace=tracer)
 
 
 def middle_columns(trace: list) -> list:
@@ -58,14 +53,16 @@ def middle_columns(trace: list) -> list:
     return [e for e in trace if e.kind == "dislop_column" and e.branch in LINE_BRANCHES]
 
 
+def _middle_column(event) -> str:
+    """Where a column event of a line is: the column (or row) it walks and its middle pixel."""
+    walked = f"column {event.x}" if event.major == "x" else f"row {event.y}"
+    return f"{walked} (middle pixel ({event.x}, {event.y}))"
+
+
 def _column_of_call(index: int, trace: list) -> str:
     """The formula runs once per middle column, in the order the columns are traced."""
     middle = middle_columns(trace)
-    if index >= len(middle):
-        return f"call {index + 1}"
-    event = middle[index]
-    walked = f"column {event.x}" if event.major == "x" else f"row {event.y}"
-    return f"{walked} (middle pixel ({event.x}, {event.y}))"
+    return _middle_column(middle[index]) if index < len(middle) else f"call {index + 1}"
 
 
 def _case(label, p0, p1, width, height, category=""):
@@ -252,8 +249,7 @@ def dislop_column(m, dxy):
 """
 
 
-def _variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(SOLUTION, name, hint, *edits)
+_variant = functools.partial(edited_variant, SOLUTION)
 
 
 IDEA = (
@@ -308,7 +304,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=SOLUTION,
-        call=_draw_with("dislop_column"),
+        call=call_with_step("dislop_column", _draw),
         reference=middle_column,
         public=PUBLIC,
         generate=_dislop_case,
@@ -394,28 +390,19 @@ POST_KINDS = ("post_column",)
 POST_CATEGORIES = ("lines", "ties", "horizontal or 45 degrees", "steep lines", "polygon edges")
 
 
-def _post_with(step: str):
-    def call(fn, inputs, tracer):
-        with steps.using(**{step: fn}):
-            return post_antialias(
-                np.zeros((inputs["height"], inputs["width"])),
-                inputs["segments"],
-                kind=inputs["kind"],
-                flags=inputs["flags"],
-                trace=tracer,
-            )
-
-    return call
+def _post(inputs: dict, tracer):
+    return post_antialias(
+        np.zeros((inputs["height"], inputs["width"])),
+        inputs["segments"],
+        kind=inputs["kind"],
+        flags=inputs["flags"],
+        trace=tracer,
+    )
 
 
-def _look_up_of_call(index: int, trace: list) -> str:
+def _look_up(event) -> str:
     """The indices are found once per table column (the dxy recurrence), in trace order."""
-    looked_up = [e for e in trace if e.kind == "post_column"]
-    if index >= len(looked_up):
-        return f"call {index + 1}"
-    event = looked_up[index]
-    walked = f"column {event.x}" if event.major == "x" else f"row {event.y}"
-    return f"segment {event.segment}, {walked} (middle pixel ({event.x}, {event.y}))"
+    return f"segment {event.segment}, {_middle_column(event)}"
 
 
 def post_table(trace) -> str:
@@ -581,8 +568,7 @@ def table_index(m, dxy):
 """
 
 
-def _index_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(INDEX_SOLUTION, name, hint, *edits)
+_index_variant = functools.partial(edited_variant, INDEX_SOLUTION)
 
 
 POST_IDEA = (
@@ -624,7 +610,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=INDEX_SOLUTION,
-        call=_post_with("table_index"),
+        call=call_with_step("table_index", _post),
         reference=table_indices,
         public=POST_PUBLIC,
         generate=_table_index_case,
@@ -673,7 +659,7 @@ register(
         ),
         kinds=POST_KINDS,
         step="table_index",
-        place=_look_up_of_call,
+        place=place_by_event("post_column", _look_up),
         result=lambda image: image[:, :, 0],
         stepper=(
             "import numpy as np\n"

@@ -11,24 +11,15 @@ nearer), the slides' example among them (`scanviz.visibility.examples.slides_bsp
 
 from __future__ import annotations
 
+import functools
 import random
 
-import numpy as np
-
-from .. import steps
-from ..visibility import ScreenPolygons, solve
+from ..visibility import solve
 from ..visibility.bsp import BSP, ORDERS, ROOTS, display_order
 from ..visibility.examples import BSP_SEQUENCE, slides_bsp
-from .cases import plane_polygon
+from .cases import call_with_step, case_polygons, place_by_event, plane_polygon, polygon_lists
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant, feature_tests
-
-
-def case_polygons(inputs: dict) -> ScreenPolygons:
-    """The screen polygons of a case, each vertex's value its polygon's index."""
-    polygons = [[tuple(map(float, v)) for v in vertices] for vertices in inputs["polygons"]]
-    values = [np.full((len(p), 1), float(i)) for i, p in enumerate(polygons)]
-    return ScreenPolygons.from_polygons(polygons, values)
+from .core import Case, Exercise, edited_variant, feature_tests
 
 
 def case_options(inputs: dict) -> BSP:
@@ -36,31 +27,24 @@ def case_options(inputs: dict) -> BSP:
     return BSP(root=inputs["root"], order=inputs["order"], sequence=tuple(inputs["sequence"]))
 
 
-def _solve_with(fn, inputs, tracer):
-    with steps.using(bsp_display_order=fn):
-        return solve(
-            case_options(inputs),
-            case_polygons(inputs),
-            inputs["width"],
-            inputs["height"],
-            trace=tracer,
-        )
+def _solve(inputs: dict, tracer):
+    return solve(
+        case_options(inputs),
+        case_polygons(inputs),
+        inputs["width"],
+        inputs["height"],
+        trace=tracer,
+    )
 
 
-def _node_of_call(index: int, trace: list) -> str:
-    visits = [e for e in trace if e.kind == "bsp_visited"]
-    if index >= len(visits):
-        return f"call {index + 1}"
-    visit = visits[index]
-    return f"node {visit.node} (piece {visit.piece})"
+_node_of_call = place_by_event(
+    "bsp_visited", lambda visit: f"node {visit.node} (piece {visit.piece})"
+)
 
 
 def _slides_case(order: str) -> dict:
-    polygons = slides_bsp()
-    offsets = polygons.offsets.tolist()
-    vertices = np.column_stack([polygons.xy, polygons.z]).tolist()
     return {
-        "polygons": [vertices[a:b] for a, b in zip(offsets, offsets[1:], strict=False)],
+        "polygons": polygon_lists(slides_bsp()),
         "width": 32,
         "height": 24,
         "root": "first",
@@ -123,8 +107,7 @@ def bsp_display_order(viewer_in_front, front_to_back):
 """
 
 
-def _order_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(DISPLAY_ORDER_SOLUTION, name, hint, *edits)
+_order_variant = functools.partial(edited_variant, DISPLAY_ORDER_SOLUTION)
 
 
 EXERCISE = register(
@@ -160,7 +143,7 @@ EXERCISE = register(
             "    raise NotImplementedError\n"
         ),
         solution=DISPLAY_ORDER_SOLUTION,
-        call=_solve_with,
+        call=call_with_step("bsp_display_order", _solve),
         reference=display_order,
         public=(
             Case(

@@ -1,14 +1,23 @@
-"""Random inputs for hidden and practice cases: the shapes that break textbook code.
+"""Random inputs for hidden and practice cases (the shapes that break textbook code), and the
+pieces the exercise modules share to declare an exercise.
 
 Every generator takes a `random.Random` (seeded by the grader from the course
 secret, or locally for practice) and returns plain values, so a case crosses
-the sandbox boundary as JSON.
+the sandbox boundary as JSON. `call_with_step` and `place_by_event` build an
+exercise's ``call`` and ``place``; `case_polygons` and `polygon_lists` turn the
+polygons of a visibility case into `ScreenPolygons` and back.
 """
 
 from __future__ import annotations
 
 import math
 import random
+from collections.abc import Callable
+
+import numpy as np
+
+from .. import steps
+from ..visibility import ScreenPolygons
 
 FEATURES = ("convex", "concave", "horizontal edges", "shared vertex", "sliver", "on pixel centers")
 
@@ -114,3 +123,42 @@ def _polygon(rng: random.Random, kind: str, width: int, height: int, step: float
         ]
         for a in angles
     ]
+
+
+# --- declaring an exercise ---------------------------------------------------------------
+
+
+def case_polygons(inputs: dict) -> ScreenPolygons:
+    """The screen polygons of a case, each vertex's value its polygon's index."""
+    polygons = [[tuple(map(float, v)) for v in vertices] for vertices in inputs["polygons"]]
+    values = [np.full((len(p), 1), float(i)) for i, p in enumerate(polygons)]
+    return ScreenPolygons.from_polygons(polygons, values)
+
+
+def polygon_lists(polygons: ScreenPolygons) -> list:
+    """The [x, y, z] vertices of each of `polygons`, as a case holds them (`case_polygons`)."""
+    offsets = polygons.offsets.tolist()
+    vertices = np.column_stack([polygons.xy, polygons.z]).tolist()
+    return [vertices[a:b] for a, b in zip(offsets, offsets[1:], strict=False)]
+
+
+def call_with_step(step: str, run: Callable[[dict, object], object]) -> Callable:
+    """An exercise's ``call``: ``run(inputs, tracer)`` with `step` of the step table replaced
+    by the student's function (`scanviz.steps.using`)."""
+
+    def call(fn, inputs: dict, tracer):
+        with steps.using(**{step: fn}):
+            return run(inputs, tracer)
+
+    return call
+
+
+def place_by_event(kind: str, describe: Callable[[object], str]) -> Callable[[int, list], str]:
+    """An exercise's ``place`` when call k of its step is made at the k-th `kind` event of the
+    reference's trace: that event as `describe` says, ``call k + 1`` past the last one."""
+
+    def place(index: int, trace: list) -> str:
+        events = [e for e in trace if e.kind == kind]
+        return describe(events[index]) if index < len(events) else f"call {index + 1}"
+
+    return place

@@ -12,34 +12,24 @@ the slides' examples among them (`scanviz.visibility.examples`).
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
-import numpy as np
-
-from .. import steps
 from ..visibility import ScreenPolygons, examples, solve
 from ..visibility.depth_sort import DepthSort, depth_order_test
-from .cases import plane_polygon
+from .cases import call_with_step, case_polygons, grid_value, plane_polygon, polygon_lists
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant, feature_tests
+from .core import Case, Exercise, edited_variant, feature_tests
 
 KINDS = ("pair_tested", "pieces_swapped", "polygon_split")
 REVERSED_TESTS = ("other_behind_plane", "s_in_front")
 
 
-def case_polygons(inputs: dict) -> ScreenPolygons:
-    """The screen polygons of a case, each vertex's value its polygon's index."""
-    polygons = [[tuple(map(float, v)) for v in vertices] for vertices in inputs["polygons"]]
-    values = [np.full((len(p), 1), float(i)) for i, p in enumerate(polygons)]
-    return ScreenPolygons.from_polygons(polygons, values)
-
-
-def _solve_with(fn, inputs, tracer):
-    with steps.using(depth_order_test=fn):
-        return solve(
-            DepthSort(), case_polygons(inputs), inputs["width"], inputs["height"], trace=tracer
-        )
+def _solve(inputs: dict, tracer):
+    return solve(
+        DepthSort(), case_polygons(inputs), inputs["width"], inputs["height"], trace=tracer
+    )
 
 
 def _pair_of_call(index: int, trace: list) -> str:
@@ -54,13 +44,7 @@ def _pair_of_call(index: int, trace: list) -> str:
 
 
 def _inputs(polygons: ScreenPolygons, width: int, height: int) -> dict:
-    offsets = polygons.offsets.tolist()
-    vertices = np.column_stack([polygons.xy, polygons.z]).tolist()
-    return {
-        "polygons": [vertices[a:b] for a, b in zip(offsets, offsets[1:], strict=False)],
-        "width": width,
-        "height": height,
-    }
+    return {"polygons": polygon_lists(polygons), "width": width, "height": height}
 
 
 def _touching_rectangles(rng: random.Random, width: int, height: int) -> list:
@@ -103,10 +87,6 @@ GAPS = {  # how far a vertex is in front of a plane; the tolerance is 1e-9 x max
 }
 
 
-def _quarter(rng: random.Random, low: float, high: float) -> float:
-    return round(rng.uniform(low, high) * 4) / 4
-
-
 def _depth_plane(rng: random.Random, x0: float, y0: float, tilt: bool):
     """A depth plane rising to the right (and up or down if `tilt`) by dyadic steps, so that its
     depth at quarter pixels is exact in floating point (and so is a vertex `GAPS` off it)."""
@@ -133,18 +113,18 @@ def _near_pair(rng: random.Random, size: int, gap: float) -> list:
     in a canonical frame, then turned by a random symmetry of the size x size raster.
     """
     on_plane = rng.random() < 0.5
-    x0, y0 = _quarter(rng, 0.5, 3), _quarter(rng, 0.5, 3)
-    x1, y1 = x0 + _quarter(rng, 3, 5), y0 + _quarter(rng, 3, size - 4 - y0)
+    x0, y0 = grid_value(rng, 0.5, 3), grid_value(rng, 0.5, 3)
+    x1, y1 = x0 + grid_value(rng, 3, 5), y0 + grid_value(rng, 3, size - 4 - y0)
     depth = _depth_plane(rng, x0, y0, tilt=on_plane)
     plane = _corners(rng, x0, y0, x1, y1, depth)
     if on_plane:  # S on the plane of S', from inside it to past its deepest side
-        left, right = _quarter(rng, x0 + 1, x1 - 1), _quarter(rng, x1 + 1, size - 1)
-        low, high = _quarter(rng, 0, y0), _quarter(rng, y1, size)  # S's rows hold those of S'
+        left, right = grid_value(rng, x0 + 1, x1 - 1), grid_value(rng, x1 + 1, size - 1)
+        low, high = grid_value(rng, 0, y0), grid_value(rng, y1, size)  # S's rows hold those of S'
         corners = [(left, low), (right, low), (right, high), (left, high)]
         pair = [plane, [[x, y, depth(x, y) - gap] for x, y in corners]]
     else:  # S' flat, a quarter pixel and more right of S's nearest vertices (at x0)
-        left, right = x0 + 0.25, x0 + _quarter(rng, 1, 3)
-        low, high = _quarter(rng, 0, y0 + 1), _quarter(rng, y1 - 1, size)
+        left, right = x0 + 0.25, x0 + grid_value(rng, 1, 3)
+        low, high = grid_value(rng, 0, y0 + 1), grid_value(rng, y1 - 1, size)
         corners = [(left, low), (right, low), (right, high), (left, high)]
         pair = [[[x, y, depth(x0, y0) + gap] for x, y in corners], plane]
     flip_x, flip_y, swap = (rng.random() < 0.5 for _ in range(3))
@@ -308,8 +288,7 @@ def _on_slope(corners: list, gap: float) -> list:
     return [[x, y, 0.5 + x / 64 - gap] for x, y in corners]
 
 
-def _variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(DEPTH_ORDER_SOLUTION, name, hint, *edits)
+_variant = functools.partial(edited_variant, DEPTH_ORDER_SOLUTION)
 
 
 EXTENT_TESTS = """\
@@ -361,7 +340,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=DEPTH_ORDER_SOLUTION,
-        call=_solve_with,
+        call=call_with_step("depth_order_test", _solve),
         reference=depth_order_test,
         public=(
             Case(

@@ -16,14 +16,15 @@ entries, cosines below the table (level 0) and samples past the terminator.
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
-from .. import steps
 from ..shading.fast_phong import ReflectionModel, fast_phong_triangle, forward_difference
 from ..shading.lut import specular_level
+from .cases import call_with_step, grid_value, place_by_event
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant, feature_tests
+from .core import Case, Exercise, edited_variant, feature_tests
 
 KINDS = ("fast_phong_pixel",)
 QUADRATICS = (  # the stepped quadratics, in the loop's order, named as the event's fields
@@ -42,6 +43,14 @@ CATEGORIES = (
 )
 SPECULAR = {"phong highlight": "phong", "blinn highlight": "blinn"}  # the others draw one
 SIZE = 12  # the raster of the hidden cases
+STEPPER = (
+    "from scanviz.exercises.fast_phong import case_model\n"
+    "from scanviz.widgets.fast_phong import fast_phong_stepper\n"
+    "fast_phong_stepper(CASE['vertices'], CASE['normals'], CASE['to_light'], "
+    "CASE['to_viewer'], case_model(CASE),\n"
+    "                   width=CASE['width'], height=CASE['height'], "
+    "expansion=CASE['expansion'])"
+)
 
 
 def case_model(inputs: dict) -> ReflectionModel:
@@ -49,34 +58,26 @@ def case_model(inputs: dict) -> ReflectionModel:
     return ReflectionModel(**inputs["model"])
 
 
-def _shade_with(step: str):
-    def call(fn, inputs, tracer):
-        with steps.using(**{step: fn}):
-            return fast_phong_triangle(
-                inputs["vertices"],
-                inputs["normals"],
-                inputs["to_light"],
-                inputs["to_viewer"],
-                case_model(inputs),
-                width=inputs["width"],
-                height=inputs["height"],
-                expansion=inputs["expansion"],
-                trace=tracer,
-            )
-
-    return call
+def _shade(inputs: dict, tracer):
+    return fast_phong_triangle(
+        inputs["vertices"],
+        inputs["normals"],
+        inputs["to_light"],
+        inputs["to_viewer"],
+        case_model(inputs),
+        width=inputs["width"],
+        height=inputs["height"],
+        expansion=inputs["expansion"],
+        trace=tracer,
+    )
 
 
 def _pixels(trace: list) -> list:
     return [e for e in trace if e.kind == "fast_phong_pixel"]
 
 
-def _sample_of_call(index: int, trace: list) -> str:
+def _sample(pixel) -> str:
     """The look-up runs once per covered sample, in the order the samples are traced."""
-    pixels = _pixels(trace)
-    if index >= len(pixels):
-        return f"call {index + 1}"
-    pixel = pixels[index]
     return f"pixel ({pixel.x}, {pixel.y})" + (" (a span's first)" if pixel.direct else "")
 
 
@@ -195,11 +196,11 @@ def _triangle(rng: random.Random, corner: bool) -> list:
         if corner:
             ux, uy = rng.randint(0, 3), rng.randint(0, 3)
             right = min(ux + rng.randint(4, 8), SIZE - 1)
-            top = (_quarter(rng, ux, right), _quarter(rng, uy + 4, SIZE - 0.25))
+            top = (grid_value(rng, ux, right), grid_value(rng, uy + 4, SIZE - 0.25))
             vertices = [[float(ux), float(uy)], [float(right), float(uy)], list(top)]
         else:
             vertices = [
-                [_quarter(rng, 0, SIZE - 0.25), _quarter(rng, 0, SIZE - 0.25)] for _ in "uvw"
+                [grid_value(rng, 0, SIZE - 0.25), grid_value(rng, 0, SIZE - 0.25)] for _ in "uvw"
             ]
         (ax, ay), (bx, by), (cx, cy) = vertices
         if abs((bx - ax) * (cy - ay) - (cx - ax) * (by - ay)) / 2 >= 12:
@@ -207,10 +208,6 @@ def _triangle(rng: random.Random, corner: bool) -> list:
     if not corner and rng.random() < 0.5:
         vertices[1], vertices[2] = vertices[2], vertices[1]
     return vertices
-
-
-def _quarter(rng: random.Random, low: float, high: float) -> float:
-    return round(rng.uniform(low, high) * 4) / 4
 
 
 def _normals_about(rng: random.Random, centre, tilt: float) -> list:
@@ -346,8 +343,7 @@ def specular_level(table, cos_phi, start):
 """
 
 
-def _level_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(LEVEL_SOLUTION, name, hint, *edits)
+_level_variant = functools.partial(edited_variant, LEVEL_SOLUTION)
 
 
 IDEA = (
@@ -403,7 +399,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=LEVEL_SOLUTION,
-        call=_shade_with("specular_level"),
+        call=call_with_step("specular_level", _shade),
         reference=specular_level,
         public=PUBLIC,
         generate=_fast_phong_case,
@@ -442,16 +438,9 @@ register(
         ),
         kinds=KINDS,
         step="specular_level",
-        place=_sample_of_call,
+        place=place_by_event("fast_phong_pixel", _sample),
         result=lambda shaded: shaded.colors,
-        stepper=(
-            "from scanviz.exercises.fast_phong import case_model\n"
-            "from scanviz.widgets.fast_phong import fast_phong_stepper\n"
-            "fast_phong_stepper(CASE['vertices'], CASE['normals'], CASE['to_light'], "
-            "CASE['to_viewer'], case_model(CASE),\n"
-            "                   width=CASE['width'], height=CASE['height'], "
-            "expansion=CASE['expansion'])"
-        ),
+        stepper=STEPPER,
     )
 )
 
@@ -464,8 +453,7 @@ def forward_difference(q, dq, t5):
 """
 
 
-def _difference_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(DIFFERENCE_SOLUTION, name, hint, *edits)
+_difference_variant = functools.partial(edited_variant, DIFFERENCE_SOLUTION)
 
 
 register(
@@ -496,7 +484,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=DIFFERENCE_SOLUTION,
-        call=_shade_with("forward_difference"),
+        call=call_with_step("forward_difference", _shade),
         reference=forward_difference,
         public=PUBLIC,
         generate=_fast_phong_case,
@@ -529,13 +517,6 @@ register(
         place=_quadratic_of_call,
         result=lambda shaded: shaded.colors,
         rtol=0.0,  # the two additions are prescribed, so a right answer has the reference's bits
-        stepper=(
-            "from scanviz.exercises.fast_phong import case_model\n"
-            "from scanviz.widgets.fast_phong import fast_phong_stepper\n"
-            "fast_phong_stepper(CASE['vertices'], CASE['normals'], CASE['to_light'], "
-            "CASE['to_viewer'], case_model(CASE),\n"
-            "                   width=CASE['width'], height=CASE['height'], "
-            "expansion=CASE['expansion'])"
-        ),
+        stepper=STEPPER,
     )
 )

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
-from .. import steps
 from ..raster.interpolate import span_step
 from ..visibility.zbuffer import ScreenPolygons, zbuffer
+from .cases import call_with_step, grid_value
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant, feature_tests
+from .core import Case, Exercise, edited_variant, feature_tests
 
 SIZE = 16  # the raster of the hidden cases
 
@@ -23,11 +24,6 @@ def _render(inputs, tracer):
         perspective=inputs["inv_w"] is not None,
         trace=tracer,
     )
-
-
-def _render_with_step(fn, inputs, tracer):
-    with steps.using(span_step=fn):
-        return _render(inputs, tracer)
 
 
 def _sample_of_call(index: int, trace: list) -> str:
@@ -52,16 +48,12 @@ def _case(label: str, polygons: list, colors: list, width: int, height: int, inv
     return Case(label, inputs)
 
 
-def _quarter(rng: random.Random, low: float, high: float) -> float:
-    return round(rng.uniform(low, high) * 4) / 4
-
-
 def _polygon(rng: random.Random, wide: bool) -> list:
     """A triangle or a quad (convex, either winding) with depths in [0, 1]; `wide` spans the raster."""
     if wide:
-        y0 = _quarter(rng, 0, SIZE / 2)
-        top = (_quarter(rng, 0, SIZE), _quarter(rng, y0 + 2, SIZE))
-        corners = [(0.25, y0), (SIZE - 0.25, y0 + _quarter(rng, 0, 2)), top]
+        y0 = grid_value(rng, 0, SIZE / 2)
+        top = (grid_value(rng, 0, SIZE), grid_value(rng, y0 + 2, SIZE))
+        corners = [(0.25, y0), (SIZE - 0.25, y0 + grid_value(rng, 0, 2)), top]
     else:
         cx, cy, radius = rng.uniform(5, SIZE - 5), rng.uniform(5, SIZE - 5), rng.uniform(3, 5)
         angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(rng.choice((3, 4))))
@@ -134,8 +126,7 @@ def span_step(z, carry, values, dzdx, dvdx):
 """
 
 
-def _variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(SOLUTION, name, hint, *edits)
+_variant = functools.partial(edited_variant, SOLUTION)
 
 
 RED, GREEN, BLUE = [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]
@@ -173,7 +164,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=SOLUTION,
-        call=_render_with_step,
+        call=call_with_step("span_step", _render),
         reference=span_step,
         public=(
             _case(

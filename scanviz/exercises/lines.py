@@ -6,13 +6,17 @@ import random
 
 import numpy as np
 
-from .. import steps
 from ..raster.lines import midpoint_line, midpoint_step, octant
 from ..trace import Recorder
+from .cases import call_with_step
 from .catalog import register
 from .core import Case, Exercise, edited_variant, feature_tests
 
 SIZE = 16  # lines of the hidden cases fit a SIZE x SIZE raster
+STEPPER = (
+    "from scanviz.widgets import line_stepper\n"
+    "line_stepper(CASE['x0'], CASE['y0'], CASE['x1'], CASE['y1'])"
+)
 
 
 def _pixels(xs: np.ndarray, ys: np.ndarray) -> list[tuple[int, int]]:
@@ -34,9 +38,8 @@ def _ends(inputs) -> tuple[int, int, int, int]:
     return inputs["x0"], inputs["y0"], inputs["x1"], inputs["y1"]
 
 
-def _line_with_step(fn, inputs, tracer):
-    with steps.using(midpoint_step=fn):
-        xs, ys = midpoint_line(*_ends(inputs), trace=tracer)
+def _midpoint_line(inputs: dict, tracer):
+    xs, ys = midpoint_line(*_ends(inputs), trace=tracer)
     return _pixels(xs, ys), inputs["width"], inputs["height"]
 
 
@@ -149,6 +152,10 @@ IDEA_CONVENTIONS = (
     "(x, y); both endpoints are drawn."
 )
 
+SHALLOW = _line("shallow line (octant 0)", 0, 0, 11, 4, 12, 5)
+TIE = _line("through a midpoint (tie)", 1, 1, 9, 5, 10, 6)
+DOWN_TIES = _line("down to the right, ties (octant 7)", 1, 5, 9, 1, 10, 6)
+
 # --- 1: the decision step ----------------------------------------------------------------
 
 DECISION_SOLUTION = """\
@@ -158,12 +165,7 @@ def midpoint_step(d, dx, dy):
     return False, d - 2 * dy
 """
 
-DECISION_CASES = (
-    _line("shallow line (octant 0)", 0, 0, 11, 4, 12, 5),
-    _line("through a midpoint (tie)", 1, 1, 9, 5, 10, 6),
-    _line("steep line (octant 1)", 2, 1, 6, 12, 8, 13),
-    _line("down to the right, ties (octant 7)", 1, 5, 9, 1, 10, 6),
-)
+DECISION_CASES = (SHALLOW, TIE, _line("steep line (octant 1)", 2, 1, 6, 12, 8, 13), DOWN_TIES)
 
 register(
     Exercise(
@@ -195,7 +197,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=DECISION_SOLUTION,
-        call=_line_with_step,
+        call=call_with_step("midpoint_step", _midpoint_line),
         reference=midpoint_step,
         public=DECISION_CASES,
         generate=_line_case,
@@ -238,10 +240,7 @@ register(
         place=_pixel_of_call,
         result=lambda returned: returned[0],
         raster=_painted,
-        stepper=(
-            "from scanviz.widgets import line_stepper\n"
-            "line_stepper(CASE['x0'], CASE['y0'], CASE['x1'], CASE['y1'])"
-        ),
+        stepper=STEPPER,
     )
 )
 
@@ -298,9 +297,9 @@ def midpoint_line(x0, y0, x1, y1, tracer):
 """
 
 LOOP_CASES = (
-    _line("shallow line (octant 0)", 0, 0, 11, 4, 12, 5),
-    _line("through a midpoint (tie)", 1, 1, 9, 5, 10, 6),
-    _line("down to the right, ties (octant 7)", 1, 5, 9, 1, 10, 6),
+    SHALLOW,
+    TIE,
+    DOWN_TIES,
     _line("steep, down to the left (octant 5)", 6, 12, 2, 1, 8, 13),
     _line("one pixel", 3, 2, 3, 2, 5, 4),
     _line("45 degrees, down to the right (octant 7)", 1, 8, 8, 1, 10, 10),
@@ -412,9 +411,6 @@ register(
         kinds=("line_setup", "line_step"),
         result=lambda returned: returned[0],
         raster=_painted,
-        stepper=(
-            "from scanviz.widgets import line_stepper\n"
-            "line_stepper(CASE['x0'], CASE['y0'], CASE['x1'], CASE['y1'])"
-        ),
+        stepper=STEPPER,
     )
 )

@@ -15,18 +15,24 @@ Wang's (1989) test, not the z-buffer's truth.
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
-from .. import steps
 from ..surfaces import GridSurface, View, floating_perimeter
 from ..surfaces.perimeter import perimeter_merge, perimeter_test
+from .cases import call_with_step, place_by_event
 from .catalog import register
-from .core import Case, Exercise, Variant, edited_variant, feature_tests
+from .core import Case, Exercise, edited_variant, feature_tests
 
 KINDS = ("perimeter_edge", "perimeter_update")
 VIEWINGS = ("face-on", "edge-on", "corner-on", "parallel")
 ARRAYS = ("top", "bottom", "right", "left")
+STEPPER = (
+    "from scanviz.exercises.perimeter import case_surface, case_view\n"
+    "from scanviz.widgets.surfaces import perimeter_stepper\n"
+    "perimeter_stepper(case_surface(CASE), case_view(CASE), CASE['width'], CASE['height'])"
+)
 
 
 def case_surface(inputs: dict) -> GridSurface:
@@ -39,19 +45,15 @@ def case_view(inputs: dict) -> View:
     return View(tuple(inputs["point"]), tuple(inputs["direction"]), inputs["projection"])
 
 
-def _lines_with(step: str):
-    def call(fn, inputs, tracer):
-        with steps.using(**{step: fn}):
-            return floating_perimeter(
-                case_surface(inputs),
-                case_view(inputs),
-                inputs["width"],
-                inputs["height"],
-                "lines",
-                trace=tracer,
-            )
-
-    return call
+def _floating_perimeter(inputs: dict, tracer):
+    return floating_perimeter(
+        case_surface(inputs),
+        case_view(inputs),
+        inputs["width"],
+        inputs["height"],
+        "lines",
+        trace=tracer,
+    )
 
 
 def _point_of_call(index: int, trace: list) -> str:
@@ -67,9 +69,7 @@ def _point_of_call(index: int, trace: list) -> str:
     return f"call {index + 1}"
 
 
-def _facet_of_call(index: int, trace: list) -> str:
-    updates = [e for e in trace if e.kind == "perimeter_update"]
-    return f"facet {updates[index].facet}" if index < len(updates) else f"call {index + 1}"
+_facet_of_call = place_by_event("perimeter_update", lambda update: f"facet {update.facet}")
 
 
 def _merged(args: tuple, kwargs: dict, returned: object) -> dict:
@@ -338,8 +338,7 @@ def perimeter_test(top, bottom, right, left, x, y):
 """
 
 
-def _test_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(TEST_SOLUTION, name, hint, *edits)
+_test_variant = functools.partial(edited_variant, TEST_SOLUTION)
 
 
 IDEA = (
@@ -390,7 +389,7 @@ EXERCISE_TEST = register(
             "    raise NotImplementedError\n"
         ),
         solution=TEST_SOLUTION,
-        call=_lines_with("perimeter_test"),
+        call=call_with_step("perimeter_test", _floating_perimeter),
         reference=perimeter_test,
         public=PUBLIC,
         generate=_perimeter_case,
@@ -428,11 +427,7 @@ EXERCISE_TEST = register(
         step="perimeter_test",
         place=_point_of_call,
         raster=lambda result: result.lines,
-        stepper=(
-            "from scanviz.exercises.perimeter import case_surface, case_view\n"
-            "from scanviz.widgets.surfaces import perimeter_stepper\n"
-            "perimeter_stepper(case_surface(CASE), case_view(CASE), CASE['width'], CASE['height'])"
-        ),
+        stepper=STEPPER,
     )
 )
 
@@ -468,8 +463,7 @@ MIN_MAX_SWAPPED = """\
 """
 
 
-def _merge_variant(name: str, hint: str, *edits: tuple[str, str]) -> Variant:
-    return edited_variant(MERGE_SOLUTION, name, hint, *edits)
+_merge_variant = functools.partial(edited_variant, MERGE_SOLUTION)
 
 
 EXERCISE_MERGE = register(
@@ -498,7 +492,7 @@ EXERCISE_MERGE = register(
             "    raise NotImplementedError\n"
         ),
         solution=MERGE_SOLUTION,
-        call=_lines_with("perimeter_merge"),
+        call=call_with_step("perimeter_merge", _floating_perimeter),
         reference=perimeter_merge,
         public=PUBLIC,
         generate=_perimeter_case,
@@ -547,10 +541,6 @@ EXERCISE_MERGE = register(
         place=_facet_of_call,
         output=_merged,
         raster=lambda result: result.lines,
-        stepper=(
-            "from scanviz.exercises.perimeter import case_surface, case_view\n"
-            "from scanviz.widgets.surfaces import perimeter_stepper\n"
-            "perimeter_stepper(case_surface(CASE), case_view(CASE), CASE['width'], CASE['height'])"
-        ),
+        stepper=STEPPER,
     )
 )

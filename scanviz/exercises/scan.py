@@ -14,11 +14,10 @@ from fractions import Fraction
 
 import numpy as np
 
-from .. import steps
 from ..raster import scan_convert
 from ..raster.scanline import EdgeEntry, aet_update, edge_table_entry, span_rule
 from ..trace import Recorder
-from .cases import polygon, star
+from .cases import call_with_step, place_by_event, polygon, star
 from .catalog import register
 from .core import Case, Exercise, edited_variant, feature_tests
 
@@ -28,20 +27,11 @@ IDEA_CONVENTIONS = (
 )
 
 
-def _scan_with(step: str):
-    """The exercise's call: scan convert the case's polygon with `step` replaced by `fn`."""
-
-    def call(fn, inputs, tracer):
-        with steps.using(**{step: fn}):
-            return scan_convert(
-                inputs["polygon"],
-                inputs["width"],
-                inputs["height"],
-                rule=inputs["rule"],
-                trace=tracer,
-            )
-
-    return call
+def _scan(inputs: dict, tracer):
+    """The scan conversion of the case's polygon."""
+    return scan_convert(
+        inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=tracer
+    )
 
 
 def _case(label: str, vertices: list, width: int, height: int, rule: str = "nonzero") -> Case:
@@ -215,9 +205,7 @@ def _traced(key: str) -> tuple:
     """Every event of the reference's scan conversion of a case (its inputs as JSON)."""
     inputs = json.loads(key)
     recorder = Recorder()
-    scan_convert(
-        inputs["polygon"], inputs["width"], inputs["height"], rule=inputs["rule"], trace=recorder
-    )
+    _scan(inputs, recorder)
     return tuple(recorder.trace())
 
 
@@ -328,9 +316,7 @@ def _scan_features(*names: str) -> dict:
 # --- 5: the span rule ------------------------------------------------------------------------
 
 
-def _row_of_call(index: int, trace: list) -> str:
-    rows = [e.y for e in trace if e.kind == "aet_sorted"]
-    return f"row {rows[index]}" if index < len(rows) else f"call {index + 1}"
+_row_of_call = place_by_event("aet_sorted", lambda row: f"row {row.y}")
 
 
 SPAN_RULE_SOLUTION = """\
@@ -390,7 +376,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=SPAN_RULE_SOLUTION,
-        call=_scan_with("span_rule"),
+        call=call_with_step("span_rule", _scan),
         reference=span_rule,
         public=(
             _case("triangle", [[0, 0], [6, 0], [6, 5]], 8, 6),
@@ -538,7 +524,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=ENTRY_SOLUTION,
-        call=_scan_with("edge_table_entry"),
+        call=call_with_step("edge_table_entry", _scan),
         reference=edge_table_entry,
         public=(UMBC, OFF_GRID, PENTAGRAM, BELOW),
         generate=_span_case,
@@ -671,7 +657,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=AET_SOLUTION,
-        call=_scan_with("aet_update"),
+        call=call_with_step("aet_update", _scan),
         reference=aet_update,
         public=(UMBC, PENTAGRAM, OFF_GRID, BELOW),
         generate=_span_case,

@@ -7,8 +7,8 @@ import random
 
 import numpy as np
 
-from .. import steps
 from ..raster.edgefn import edge_function, owns_boundary, triangle_samples
+from .cases import call_with_step, grid_value
 from .catalog import register
 from .core import Case, Exercise, edited_variant, feature_tests
 
@@ -36,14 +36,6 @@ def _cover(inputs, tracer) -> tuple[np.ndarray, list[np.ndarray]]:
     return counts, weights
 
 
-def _with_step(name: str):
-    def call(fn, inputs, tracer):
-        with steps.using(**{name: fn}):
-            return _cover(inputs, tracer)
-
-    return call
-
-
 def _edge_of_call(index: int, trace: list) -> str:
     """Call k is edge k % 3 of the (k // 3)-th triangle set up."""
     setups = [e for e in trace if e.kind == "triangle_setup"]
@@ -54,10 +46,6 @@ def _edge_of_call(index: int, trace: list) -> str:
 
 def _case(label: str, triangles: list, width: int, height: int, sample: str = "corner") -> Case:
     return Case(label, {"triangles": triangles, "width": width, "height": height, "sample": sample})
-
-
-def _quarter(rng: random.Random, low: float, high: float) -> float:
-    return round(rng.uniform(low, high) * 4) / 4
 
 
 def _lattice_point(rng: random.Random) -> list[int]:
@@ -101,7 +89,7 @@ def _triangles(rng: random.Random, feature: str) -> tuple[list, str]:
         return [
             [[rng.randint(0, SIZE - 1) + 0.5, rng.randint(0, SIZE - 1) + 0.5] for _ in range(3)]
         ], "center"
-    return [[[_quarter(rng, 0, SIZE), _quarter(rng, 0, SIZE)] for _ in range(3)]], rng.choice(
+    return [[[grid_value(rng, 0, SIZE), grid_value(rng, 0, SIZE)] for _ in range(3)]], rng.choice(
         ("corner", "center")
     )
 
@@ -268,7 +256,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=OWNERSHIP_SOLUTION,
-        call=_with_step("owns_boundary"),
+        call=call_with_step("owns_boundary", _cover),
         reference=owns_boundary,
         public=OWNERSHIP_CASES,
         generate=_triangles_case,
@@ -375,7 +363,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=EDGE_SOLUTION,
-        call=_with_step("edge_function"),
+        call=call_with_step("edge_function", _cover),
         reference=edge_function,
         public=EDGE_CASES,
         generate=_triangles_case,

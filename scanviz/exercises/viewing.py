@@ -13,6 +13,7 @@ events comes from the loop, the same in both runs: it compares exactly.
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
@@ -23,6 +24,7 @@ from ..transform import clip_polygon, cull_faces, transform_vertices
 from ..transform.clip import CLIP_PLANES, clip_against_plane
 from ..transform.cull import back_face_test
 from ..transform.viewing import viewing_matrix
+from .cases import call_with_step, place_by_event
 from .catalog import register
 from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
@@ -78,19 +80,14 @@ def _eye(rng: random.Random, low: float, high: float) -> list:
 # --- 11: back-face culling -----------------------------------------------------------------
 
 
-def _cull_with(fn, inputs, tracer):
-    from .. import steps
-
-    with steps.using(back_face_test=fn):
-        culled, _ = cull_faces(
-            case_camera(inputs["camera"]), inputs["positions"], inputs["faces"], trace=tracer
-        )
+def _cull(inputs: dict, tracer):
+    culled, _ = cull_faces(
+        case_camera(inputs["camera"]), inputs["positions"], inputs["faces"], trace=tracer
+    )
     return culled
 
 
-def _face_of_call(index: int, trace: list) -> str:
-    faces = [e.polygon for e in trace if e.kind == "face_culled"]
-    return f"face {faces[index]}" if index < len(faces) else f"call {index + 1}"
+_face_of_call = place_by_event("face_culled", lambda culled: f"face {culled.polygon}")
 
 
 CULL_CATEGORIES = (
@@ -170,8 +167,7 @@ def back_face_test(normal, view):
 """
 
 
-def _cull_variant(name: str, hint: str, old: str, new: str) -> Variant:
-    return _variant(BACK_FACE_SOLUTION, name, hint, old, new)
+_cull_variant = functools.partial(_variant, BACK_FACE_SOLUTION)
 
 
 register(
@@ -204,7 +200,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=BACK_FACE_SOLUTION,
-        call=_cull_with,
+        call=call_with_step("back_face_test", _cull),
         reference=back_face_test,
         public=(
             Case(
@@ -316,11 +312,8 @@ register(
 PLANE_EQUATIONS = ("z = 0", "z = w", "x = -w", "x = w", "y = -w", "y = w")
 
 
-def _clip_with(fn, inputs, tracer):
-    from .. import steps
-
-    with steps.using(clip_against_plane=fn):
-        return clip_polygon(inputs["polygon"], inputs["attributes"], trace=tracer)
+def _clip(inputs: dict, tracer):
+    return clip_polygon(inputs["polygon"], inputs["attributes"], trace=tracer)
 
 
 def _clipped(returned) -> dict:
@@ -417,8 +410,7 @@ def clip_against_plane(vertices, plane):
 """
 
 
-def _clip_variant(name: str, hint: str, old: str, new: str) -> Variant:
-    return _variant(CLIP_SOLUTION, name, hint, old, new)
+_clip_variant = functools.partial(_variant, CLIP_SOLUTION)
 
 
 register(
@@ -455,7 +447,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=CLIP_SOLUTION,
-        call=_clip_with,
+        call=call_with_step("clip_against_plane", _clip),
         reference=clip_against_plane,
         public=(
             Case(
@@ -556,18 +548,15 @@ register(
 # --- 13: eye_from_world -------------------------------------------------------------------
 
 
-def _view_with(fn, inputs, tracer):
-    from .. import steps
-
-    with steps.using(viewing_matrix=fn):
-        return transform_vertices(
-            case_camera(inputs["camera"]),
-            inputs["points"],
-            inputs["width"],
-            inputs["height"],
-            subpixel_bits=None,  # no snapping: a last-bit difference never moves a grid point
-            trace=tracer,
-        )
+def _view(inputs: dict, tracer):
+    return transform_vertices(
+        case_camera(inputs["camera"]),
+        inputs["points"],
+        inputs["width"],
+        inputs["height"],
+        subpixel_bits=None,  # no snapping: a last-bit difference never moves a grid point
+        trace=tracer,
+    )
 
 
 VIEW_CATEGORIES = ("perspective", "orthographic", "tilted up vector", "long up vector")
@@ -655,8 +644,7 @@ def viewing_matrix(eye, look_at, up):
 """
 
 
-def _view_variant(name: str, hint: str, old: str, new: str) -> Variant:
-    return _variant(VIEWING_SOLUTION, name, hint, old, new)
+_view_variant = functools.partial(_variant, VIEWING_SOLUTION)
 
 
 CUBE_AT_ORIGIN = {"points": CUBE, "faces": CUBE_FACES, "width": 8, "height": 8}
@@ -688,7 +676,7 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=VIEWING_SOLUTION,
-        call=_view_with,
+        call=call_with_step("viewing_matrix", _view),
         reference=viewing_matrix,
         public=(
             Case(

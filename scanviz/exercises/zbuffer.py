@@ -12,12 +12,11 @@ import random
 
 import numpy as np
 
-from .. import steps
 from ..pipeline import render
 from ..scene import Scene
 from ..scene.builtin import slide_scene
 from ..visibility.zbuffer import depth_test
-from .cases import grid_value, polygon
+from .cases import call_with_step, grid_value, place_by_event, polygon
 from .catalog import register
 from .core import Case, Exercise, Variant, edited_variant, feature_tests
 
@@ -30,19 +29,24 @@ def case_scene(inputs: dict) -> Scene:
     return slide_scene(polygons, inputs["width"], inputs["height"], colors=COLORS)
 
 
-def _render_with(fn, inputs, tracer):
-    with steps.using(depth_test=fn):
-        return render(
-            case_scene(inputs), inputs["width"], inputs["height"], shading="flat", trace=tracer
-        )
+def _case(label: str, polygons: list, width: int, height: int, category: str = "") -> Case:
+    return Case(label, {"polygons": polygons, "width": width, "height": height}, category)
 
 
-def _pixel_of_call(index: int, trace: list) -> str:
-    tests = [e for e in trace if e.kind == "depth_test"]
-    if index >= len(tests):
-        return f"call {index + 1}"
-    test = tests[index]
-    return f"polygon {test.polygon} at pixel ({test.x}, {test.y})"
+def _rectangle(x0: float, y0: float, x1: float, y1: float, z: float) -> list:
+    """The rectangle [x0, x1] x [y0, y1] at depth z, counter-clockwise from (x0, y0)."""
+    return [[x0, y0, z], [x1, y0, z], [x1, y1, z], [x0, y1, z]]
+
+
+def _render(inputs: dict, tracer):
+    return render(
+        case_scene(inputs), inputs["width"], inputs["height"], shading="flat", trace=tracer
+    )
+
+
+_pixel_of_call = place_by_event(
+    "depth_test", lambda test: f"polygon {test.polygon} at pixel ({test.x}, {test.y})"
+)
 
 
 def _depths(rng: random.Random, vertices: list, flat: bool) -> list:
@@ -85,10 +89,8 @@ def _zbuffer_case(rng: random.Random, feature: str | None = None) -> Case:
         dx = rng.choice((-1, 1)) * round(width * rng.uniform(0.3, 0.6))
         polygons = [[[x + dx, y, z] for x, y, z in p] for p in polygons]
     shapes_seen = ", ".join(sorted({shape for shape, _ in shapes}))
-    return Case(
-        f"{feature or category}: {shapes_seen}",
-        {"polygons": polygons, "width": width, "height": height},
-        feature or category,
+    return _case(
+        f"{feature or category}: {shapes_seen}", polygons, width, height, feature or category
     )
 
 
@@ -158,62 +160,45 @@ register(
             "    raise NotImplementedError\n"
         ),
         solution=DEPTH_TEST_SOLUTION,
-        call=_render_with,
+        call=call_with_step("depth_test", _render),
         reference=depth_test,
         public=(
-            Case(
+            _case(
                 "the UMBC slide: a triangle piercing another",
-                {
-                    "polygons": [
-                        [[1, 1, 5], [7, 7, 5], [1, 7, 5]],
-                        [[3, 5, 9], [10, 5, 9], [10, 9, 9], [3, 9, 9]],
-                        [[2, 6, 3], [2, 3, 8], [7, 3, 3]],
-                    ],
-                    "width": 12,
-                    "height": 10,
-                },
+                [
+                    [[1, 1, 5], [7, 7, 5], [1, 7, 5]],
+                    _rectangle(3, 5, 10, 9, 9),
+                    [[2, 6, 3], [2, 3, 8], [7, 3, 3]],
+                ],
+                12,
+                10,
             ),
-            Case(
+            _case(
                 "two overlapping squares at the same depth, a third behind",
-                {
-                    "polygons": [
-                        [[1, 1, 8], [5, 1, 8], [5, 5, 8], [1, 5, 8]],
-                        [[3, 3, 8], [7, 3, 8], [7, 7, 8], [3, 7, 8]],
-                        [[2, 2, 12], [6, 2, 12], [6, 6, 12], [2, 6, 12]],
-                    ],
-                    "width": 8,
-                    "height": 8,
-                },
+                [_rectangle(1, 1, 5, 5, 8), _rectangle(3, 3, 7, 7, 8), _rectangle(2, 2, 6, 6, 12)],
+                8,
+                8,
             ),
-            Case(
+            _case(
                 "a square on the near plane z = 0, then squares behind and before the next",
-                {
-                    "polygons": [
-                        [[1, 1, 0], [4, 1, 0], [4, 4, 0], [1, 4, 0]],
-                        [[3, 3, 4], [7, 3, 4], [7, 7, 4], [3, 7, 4]],
-                        [[6, 1, 6], [8, 1, 6], [8, 5, 6], [6, 5, 6]],
-                        [[4, 6, 2], [6, 6, 2], [6, 8, 2], [4, 8, 2]],
-                    ],
-                    "width": 8,
-                    "height": 8,
-                },
+                [
+                    _rectangle(1, 1, 4, 4, 0),
+                    _rectangle(3, 3, 7, 7, 4),
+                    _rectangle(6, 1, 8, 5, 6),
+                    _rectangle(4, 6, 6, 8, 2),
+                ],
+                8,
+                8,
             ),
-            Case(
+            _case(
                 "a square a hair (2^-24) nearer than the one drawn before it, a third behind",
-                {
-                    "polygons": [
-                        [[1, 1, 6], [6, 1, 6], [6, 6, 6], [1, 6, 6]],
-                        [
-                            [3, 2, 6 - 2**-24],
-                            [8, 2, 6 - 2**-24],
-                            [8, 7, 6 - 2**-24],
-                            [3, 7, 6 - 2**-24],
-                        ],
-                        [[2, 4, 9], [7, 4, 9], [7, 7.5, 9], [2, 7.5, 9]],
-                    ],
-                    "width": 9,
-                    "height": 8,
-                },
+                [
+                    _rectangle(1, 1, 6, 6, 6),
+                    _rectangle(3, 2, 8, 7, 6 - 2**-24),
+                    _rectangle(2, 4, 7, 7.5, 9),
+                ],
+                9,
+                8,
             ),
         ),
         generate=_zbuffer_case,
