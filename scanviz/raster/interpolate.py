@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 
 import numpy as np
@@ -44,7 +44,13 @@ from numba import njit, prange
 
 from .. import steps
 from ..threads import use_threads
-from ..trace.events import EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
+from ..trace.events import (
+    EdgeValueEntry,
+    EdgeValues,
+    InterpolatedSpan,
+    PolygonSetup,
+    SpanValues,
+)
 from .fixed import SnappedPolygon
 from .scanline import AetItem, Edge, ScanRow, bucketed_edge_table, scan_rows
 
@@ -296,31 +302,14 @@ def span_step(z, carry, values, dzdx, dvdx):
     return z, carry, tuple(v + d for v, d in zip(values, dvdx, strict=True))
 
 
-@dataclass(frozen=True)
-class InterpolatedSpan:
-    """Samples [x_start, x_end) of row y between crossings x_left and x_right (sample frame).
-
-    `z` and `values` are the depth and values at x_start; `dzdx` and `dvdx` their steps.
-    """
-
-    y: int
-    x_start: int
-    x_end: int
-    x_left: float
-    x_right: float
-    z: float
-    dzdx: float
-    values: tuple[float, ...]
-    dvdx: tuple[float, ...]
-
-    def samples(self) -> Iterator[tuple[int, float, tuple[float, ...]]]:
-        """Yield (x, z, values) per sample, each from the previous one by `span_step`."""
-        step = steps.get("span_step")
-        z, z_carry, values = self.z, 0.0, self.values
-        for x in range(self.x_start, self.x_end):
-            if x > self.x_start:
-                z, z_carry, values = step(z, z_carry, values, self.dzdx, self.dvdx)
-            yield x, z, values
+def span_samples(span: InterpolatedSpan) -> Iterator[tuple[int, float, tuple[float, ...]]]:
+    """Yield (x, z, values) per sample of `span`, each from the previous one by `span_step`."""
+    step = steps.get("span_step")
+    z, z_carry, values = span.z, 0.0, span.values
+    for x in range(span.x_start, span.x_end):
+        if x > span.x_start:
+            z, z_carry, values = step(z, z_carry, values, span.dzdx, span.dvdx)
+        yield x, z, values
 
 
 class EdgeInterpolant:
@@ -477,7 +466,7 @@ def interpolate_rows(
     >>> plane = polygon_plane(square, [0.0, 1.0, 1.0, 0.0])
     >>> channels = np.array([[0.0], [2.0], [2.0], [0.0]])
     >>> for y, spans in interpolate_rows(square, plane, channels, 4, 4):
-    ...     print(y, [(x, z, v) for s in spans for x, z, v in s.samples()])
+    ...     print(y, [(x, z, v) for s in spans for x, z, v in span_samples(s)])
     0 [(0, 0.0, (0.0,)), (1, 0.5, (1.0,))]
     1 [(0, 0.0, (0.0,)), (1, 0.5, (1.0,))]
     2 []
@@ -526,16 +515,14 @@ def _emit_values(trace, polygon, y, z_row, aet, xs, spans, interpolants, snapped
     if spans and trace.wants("span_values", polygon=polygon, y=y):
         for span in spans:
             trace.emit(
-                SpanValues(
-                    polygon=polygon,
-                    y=y,
-                    x_start=span.x_start,
-                    x_end=span.x_end,
-                    x_left=span.x_left + offset,
-                    x_right=span.x_right + offset,
-                    z=float(span.z),
-                    dzdx=float(span.dzdx),
-                    values=span.values,
-                    dvdx=span.dvdx,
+                SpanValues.of(
+                    polygon,
+                    replace(
+                        span,
+                        x_left=span.x_left + offset,
+                        x_right=span.x_right + offset,
+                        z=float(span.z),
+                        dzdx=float(span.dzdx),
+                    ),
                 )
             )

@@ -26,7 +26,7 @@ import numpy as np
 from .. import steps
 from ..raster.api import as_tracer
 from ..raster.fixed import SnappedPolygon
-from ..raster.interpolate import interpolate_rows, polygon_plane
+from ..raster.interpolate import interpolate_rows, polygon_plane, span_samples
 from ..trace.events import PixelPainted
 from . import zbuffer_compiled
 from .screen_polygons import Piece, Surfaces
@@ -119,7 +119,7 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
             counts[zbuffer_compiled.SPANS] += len(spans)
             traced = trace is not None and trace.wants("pixel_painted", polygon=p, y=y)
             for span in spans:
-                for x, z, channel_values in span.samples():
+                for x, z, channel_values in span_samples(span):
                     previous = int(ids[y, x])
                     if mode == "over":
                         write = True

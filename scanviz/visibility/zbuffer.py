@@ -39,6 +39,7 @@ from ..raster.interpolate import (
     perspective_divide,
     polygon_plane,
     polygon_reaches_raster,
+    span_samples,
     vertex_channels,
 )
 from ..trace import Recorder, Trace
@@ -431,7 +432,7 @@ def zbuffer_reference(
             stats.spans += len(spans)
             traced = trace is not None and trace.wants("depth_test", polygon=p, y=y)
             for span in spans:
-                for x, z_sample, channel_values in span.samples():
+                for x, z_sample, channel_values in span_samples(span):
                     stored = _stored(depth[y, x])
                     passed = bool(nearer(z_sample, stored))
                     if traced:

@@ -446,7 +446,7 @@ def narrate_interpolation(event, name: str = "values") -> str:
     Examples
     --------
     >>> from scanviz.trace import SpanValues
-    >>> narrate_interpolation(SpanValues(0, 3, 2, 6, 1.5, 5.25, 0.5, 0.125, (1.0,), (-0.25,)))
+    >>> narrate_interpolation(SpanValues(3, 2, 6, 1.5, 5.25, 0.5, 0.125, (1.0,), (-0.25,), polygon=0))
     'Row y = 3: span 2 ≤ x < 6 between the crossings x = 1.5 and 5.25 starts with z = 0.5 and values (1) at x = 2, then adds dz/dx = 0.125 and (-0.25) per pixel: one addition each, no multiplication.'
     """
     if event.kind == "polygon_setup":

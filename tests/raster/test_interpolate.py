@@ -26,6 +26,7 @@ from scanviz.raster.interpolate import (
     interpolate_rows,
     perspective_divide,
     polygon_plane,
+    span_samples,
     span_slope,
     vertex_channels,
 )
@@ -149,7 +150,7 @@ def test_a_constant_stays_exactly_constant(points, constant, perspective_w):
     for _, row in rows_of(snap(polygon), channels):
         for span in row:
             assert span.dvdx == (0.0, 0.0)
-            assert all(values == (constant, constant) for _, _, values in span.samples())
+            assert all(values == (constant, constant) for _, _, values in span_samples(span))
 
 
 @settings(max_examples=BASE)
@@ -171,7 +172,7 @@ def test_triangle_depth_and_values_are_affine(points, values, sample):
     exact = [(F(x), F(y)) for x, y in points]  # on the 1/64 grid: snapping is exact
     for y, row in rows_of(snapped, np.array(values)[:, None], plane):
         for span in row:
-            for x, z, (value,) in span.samples():
+            for x, z, (value,) in span_samples(span):
                 sx, sy = x + offset, y + offset
                 assert abs(z - float(affine(exact, [F(d) for d in depths], sx, sy))) <= 1e-12
                 assert abs(value - float(affine(exact, [F(v) for v in values], sx, sy))) <= 1e-12
@@ -237,13 +238,15 @@ def test_span_step_compensates_the_depth_and_adds_the_values():
 
 def test_span_samples_take_their_step_from_the_step_table():
     from scanviz import steps
-    from scanviz.raster.interpolate import InterpolatedSpan
+    from scanviz.trace import InterpolatedSpan
 
     span = InterpolatedSpan(0, 2, 6, 1.5, 6.5, 0.25, 0.5, (1.0,), (0.125,))
-    assert [(x, z, v) for x, z, v in span.samples()][-1] == (
+    assert [(x, z, v) for x, z, v in span_samples(span)][-1] == (
         5,
         1.75,
         (1.375,),
     )  # three steps from x = 2
     with steps.using(span_step=lambda z, carry, values, dzdx, dvdx: (z, carry, values)):
-        assert [(x, z, v) for x, z, v in span.samples()] == [(x, 0.25, (1.0,)) for x in range(2, 6)]
+        assert [(x, z, v) for x, z, v in span_samples(span)] == [
+            (x, 0.25, (1.0,)) for x in range(2, 6)
+        ]

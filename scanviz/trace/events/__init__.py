@@ -35,7 +35,14 @@ from .abuffer import (
 )
 from .antialias import DislopColumn, PostColumn
 from .base import EVENT_TYPES, Event, Record
-from .interpolation import DepthTest, EdgeValueEntry, EdgeValues, PolygonSetup, SpanValues
+from .interpolation import (
+    DepthTest,
+    EdgeValueEntry,
+    EdgeValues,
+    InterpolatedSpan,
+    PolygonSetup,
+    SpanValues,
+)
 from .lines import LineSetup, LineStep
 from .scan import (
     AetEntry,

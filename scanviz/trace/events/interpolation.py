@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import ClassVar
 
 from .base import Event, Record
@@ -59,16 +59,15 @@ class EdgeValues(Event):
 
 
 @dataclass(frozen=True)
-class SpanValues(Event):
-    """Span [x_start, x_end) of row `y` between crossings ``x_left`` and ``x_right``.
+class InterpolatedSpan(Record):
+    """Samples [x_start, x_end) of row `y` between crossings ``x_left`` and ``x_right``.
 
     ``z`` is the depth at sample x_start (z_row + dzdx * x_start), stepped by
     ``dzdx`` per pixel; ``values`` are the values at x_start and ``dvdx`` their
-    steps, (v_right - v_left) / (x_right - x_left).
+    steps, (v_right - v_left) / (x_right - x_left). `scanviz.raster.interpolate`
+    builds them in its sample frame and walks them with `span_samples`.
     """
 
-    kind: ClassVar[str] = "span_values"
-    polygon: int
     y: int
     x_start: int
     x_end: int
@@ -78,6 +77,19 @@ class SpanValues(Event):
     dzdx: float
     values: tuple[float, ...]
     dvdx: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class SpanValues(InterpolatedSpan, Event):
+    """An `InterpolatedSpan` of polygon `polygon`, in the caller's frame."""
+
+    kind: ClassVar[str] = "span_values"
+    polygon: int
+
+    @classmethod
+    def of(cls, polygon: int, span: InterpolatedSpan) -> SpanValues:
+        """The event of `span`, a span of `polygon`."""
+        return cls(polygon=polygon, **{f.name: getattr(span, f.name) for f in fields(span)})
 
 
 @dataclass(frozen=True)
