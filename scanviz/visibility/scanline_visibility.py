@@ -39,6 +39,7 @@ it decides exactly as this reference. The derivations: docs/visibility-scanline.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -46,7 +47,7 @@ import numpy as np
 
 from .. import steps
 from ..raster.fixed import SnappedPolygon
-from ..raster.scanline import bucketed_edge_table
+from ..raster.scanline import ScanRow, bucketed_edge_table, scan_rows
 from ..trace.display import RichDisplay
 from ..trace.events import ActiveSurfaces, SurfaceRecord, SurfaceTableBuilt, VisibleSpan
 from . import scanline_compiled
@@ -120,7 +121,12 @@ class Scanline(Visibility):
 
 
 class ActiveSurface:
-    """A polygon in the AST: its edges crossing the current row (the z-buffer's edge table)."""
+    """A polygon in the AST: its edges crossing the current row, from the ET/AET walk (`scan_rows`).
+
+    The walk takes its AET update from the step table, as the scan converter
+    and the z-buffer do; only the crossings are used here (the spans are cut
+    across all the active surfaces by `row_spans`).
+    """
 
     def __init__(self, surfaces: Surfaces, p: int) -> None:
         first, stop = surfaces.polygons.offsets[p], surfaces.polygons.offsets[p + 1]
@@ -128,24 +134,25 @@ class ActiveSurface:
             surfaces.units[first:stop], np.array([0, stop - first]), surfaces.bits, surfaces.sample
         )
         self.polygon = p
-        _, self.buckets = bucketed_edge_table(snapped, surfaces.height)
-        self.edges = []
-        rows = [(row, e.row_end) for row, edges in self.buckets.items() for e in edges]
+        table = bucketed_edge_table(snapped, surfaces.height)
+        rows = [(row, e.row_end) for row, edges in table[1].items() for e in edges]
         self.y_start = min((row for row, _ in rows), default=0)  # rows [y_start, y_end)
         self.y_end = min(max((end for _, end in rows), default=0), surfaces.height)
+        self.rows = scan_rows(snapped, table, surfaces.width, surfaces.height)
+        self.row: ScanRow | None = None
+        self.y = self.y_start
 
     def update(self, y: int) -> None:
-        """Row y: retire edges past their ymax, step the others' x, start the entering ones."""
-        self.edges = [e for e in self.edges if e.row_end > y]
-        for edge in self.edges:
-            edge.crossing.step()
-        for edge in self.buckets.get(y, []):
-            edge.crossing.start(y)
-            self.edges.append(edge)
+        """Row y: the walk's row y (edges past their last row retired, the others stepped)."""
+        self.y = y
+        while self.row is None or self.row.y < y:
+            self.row = next(self.rows, ScanRow(y + 1, [], [], [], 0, []))
 
     def crossings(self, width: int) -> list[tuple[int, int]]:
         """(ceil(x) clipped to [0, width], winding) of each edge on the current row."""
-        return [(min(max(e.crossing.ceil(), 0), width), e.winding) for e in self.edges]
+        if self.row is None or self.row.y != self.y:
+            return []
+        return [(min(max(math.ceil(item.x), 0), width), item.winding) for item in self.row.aet]
 
 
 def row_spans(active: list[ActiveSurface], width: int) -> list[tuple[int, int, tuple[int, ...]]]:

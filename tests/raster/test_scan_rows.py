@@ -1,9 +1,11 @@
-"""One ET/AET walk: `scan_rows` drives scan conversion, the traced z-buffer and mask buffer.
+"""One ET/AET walk: `scan_rows` drives scan conversion, the traced z-buffer, the mask buffer
+and scanline visibility.
 
-Regression for issue 24: the traced z-buffer and the mask buffer walked their
-own AETs, so a replaced ``aet_update`` or ``span_rule`` was silently not used
-there. Now a replaced step shows in the z-buffer's spans and depth tests, and
-in the mask buffer's masks, as it does in `scan_convert`'s.
+Regression for issue 24: the traced z-buffer, the mask buffer and scanline
+visibility walked their own AETs, so a replaced ``aet_update`` or ``span_rule``
+was silently not used there. Now a replaced step shows in the z-buffer's spans
+and depth tests, the mask buffer's masks and scanline visibility's ids, as it
+does in `scan_convert`'s.
 """
 
 import dataclasses
@@ -22,7 +24,7 @@ from scanviz.raster.scanline import (
     scan_rows,
     span_rule,
 )
-from scanviz.visibility import ScreenPolygons, zbuffer
+from scanviz.visibility import ScreenPolygons, solve, zbuffer
 
 # The UMBC z-buffer slide: a triangle at depth 5, a square behind it at 9, a sloped triangle.
 SLIDE = ScreenPolygons.from_polygons(
@@ -149,3 +151,16 @@ def test_the_mask_buffers_active_edges_cover_a_sub_row_of_their_row():
     trace = mask_buffer_rows([(-1, -2), (3, -1), (2, 2.5)], 4, 3, mask="4x4").trace
     first = trace.of_kind("mask_buffer_row")[0]
     assert (first.y, first.active) == (0, (1, 2))
+
+
+def test_a_replaced_aet_update_moves_scanline_visibility_as_it_moves_the_zbuffer():
+    def shifted(active, y, entering):  # every edge enters one pixel right, and stays so
+        return aet_update(active, y, [dataclasses.replace(e, x=e.x + 1) for e in entering])
+
+    def ids(name, **replaced):
+        with steps.using(**replaced):
+            return solve(name, SLIDE, WIDTH, HEIGHT, trace=True).polygon
+
+    default, moved = ids("scanline"), ids("scanline", aet_update=shifted)
+    assert np.array_equal(moved, ids("zbuffer", aet_update=shifted))
+    assert np.array_equal(moved != -1, np.pad(default != -1, ((0, 0), (1, 0)))[:, :WIDTH])
