@@ -90,32 +90,19 @@ class ExactCrossing:
     """Where an edge crosses the current row, exactly: x = q + r/den pixels, 0 <= r < den.
 
     Built from the lower end (xl, yl) and the rise (dx, dy), in grid units of
-    `scale`. The AET takes `x` and `dxdy` as Fractions; `step` and `ceil` are
-    the integer DDA for loops that walk the crossing themselves (scanline
-    visibility). Derivation: docs/scan-conversion.md, "Exact crossings".
+    `scale`; the AET takes `x` and `dxdy` as Fractions. Derivation:
+    docs/scan-conversion.md, "Exact crossings".
     """
 
     def __init__(self, xl: int, yl: int, dx: int, dy: int, scale: int) -> None:
         self.xl, self.yl, self.dx, self.dy, self.scale = xl, yl, dx, dy, scale
         self.den = dy * scale
-        self.q_step, r_step = divmod(dx, dy)  # dx/dy = q_step + r_step/dy pixels per row
-        self.r_step = r_step * scale
 
     def start(self, row: int) -> None:
         """Jump to `row` directly (exact, so rows below the raster are never stepped through)."""
         self.q, self.r = divmod(
             self.xl * self.dy + self.dx * (row * self.scale - self.yl), self.den
         )
-
-    def step(self) -> None:
-        self.q += self.q_step
-        self.r += self.r_step
-        if self.r >= self.den:  # carry the remainder into the integer part
-            self.r -= self.den
-            self.q += 1
-
-    def ceil(self) -> int:
-        return self.q + (self.r > 0)
 
     @property
     def x(self) -> Fraction:
