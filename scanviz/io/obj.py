@@ -278,7 +278,7 @@ def frame_model(mesh: Mesh, *, aspect: float = 1.0, name: str = "") -> Scene:
     Returns
     -------
     Scene
-        A perspective camera at centre + d * (0, 1, 3) / |(0, 1, 3)| (from +z,
+        A perspective camera at centre + d * (0, 1, 3) / ‖(0, 1, 3)‖ (from +z,
         18.4 degrees above) looking at the bounding sphere's centre (see
         `bounding_sphere`), up +y, at the distance d = 1.1 r / sin(20 deg)
         where the sphere grown by 10 % fills the window's smaller side (a

@@ -103,7 +103,7 @@ def midpoint_line(
     -------
     xs, ys : (N,) ndarray of int64
         The pixels in drawing order, from (x0, y0) to (x1, y1): one per step
-        along the major axis, N = max(|x1 - x0|, |y1 - y0|) + 1.
+        along the major axis, N = max(abs(x1 - x0), abs(y1 - y0)) + 1.
 
     Notes
     -----

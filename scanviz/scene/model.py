@@ -104,12 +104,19 @@ def _number(
 class Material:
     """How a surface reflects light (thesis App. B.7, OPTICAL).
 
-    color : base (diffuse) RGB in [0, 1]
-    ambient, diffuse, specular : coefficients ka, kd, ks in [0, 1]
-    exponent : Phong specular exponent n in [0, 1e4] (`EXPONENT_LIMIT`)
-    transparency : 0 opaque .. 1 fully transparent
-    fudge : attenuation of point lights, f_att = 1 / (1 + fudge * distance); 0 = none;
-        at most 1e99 (`FUDGE_LIMIT`)
+    Parameters
+    ----------
+    color : (3,) float
+        Base (diffuse) RGB in [0, 1].
+    ambient, diffuse, specular : float
+        Coefficients ka, kd, ks in [0, 1].
+    exponent : float
+        Phong specular exponent n in [0, 1e4] (`EXPONENT_LIMIT`).
+    transparency : float
+        0 opaque .. 1 fully transparent.
+    fudge : float
+        Attenuation of point lights, f_att = 1 / (1 + fudge * distance); 0 = none;
+        at most 1e99 (`FUDGE_LIMIT`).
     """
 
     color: tuple[float, float, float] = (0.8, 0.8, 0.8)
@@ -163,15 +170,23 @@ def _array(name: str, value: object, dtype, columns: int | None) -> np.ndarray:
 class Mesh:
     """A polygon mesh.
 
-    positions : (V, 3) float64, model space
-    faces : tuple of (k_i,) int64 arrays, k_i >= 3, counter-clockwise seen from outside
-    normals : (V, 3) float64 unit vertex normals, or None to derive them:
-        averaged from the faces for ``smooth=True``, the face normal for faceted meshes
-    smooth : average normals across faces (True) or keep faces flat (False)
-    closed : the mesh bounds a solid, so back faces can be culled
-    face_materials, vertex_materials : optional (F,) / (V,) int64 indices into
-        ``materials``, -1 = inherit (face from object, vertex from face)
-    materials : the palette those indices refer to
+    Parameters
+    ----------
+    positions : (V, 3) float64
+        Vertex positions in model space.
+    faces : tuple of (k_i,) int64 arrays
+        Vertex indices, k_i >= 3, counter-clockwise seen from outside.
+    normals : (V, 3) float64 or None
+        Unit vertex normals, or None to derive them: averaged from the faces
+        for ``smooth=True``, the face normal for faceted meshes.
+    smooth : bool
+        Average normals across faces (True) or keep faces flat (False).
+    closed : bool
+        The mesh bounds a solid, so back faces can be culled.
+    face_materials, vertex_materials : (F,) / (V,) int64, optional
+        Indices into ``materials``, -1 = inherit (face from object, vertex from face).
+    materials : tuple of Material
+        The palette those indices refer to.
     """
 
     positions: np.ndarray
@@ -305,16 +320,20 @@ def check_modeling_matrix(matrix: np.ndarray) -> None:
 class Camera:
     """A viewing camera after Smith's tutorial (thesis App. D).
 
-    eye, look_at, up : world points / direction; up must not be parallel to look_at - eye;
-        eye and look_at within +-1e99 (`WORLD_LIMIT`), up any finite nonzero vector
-    window : (left, right, bottom, top) of the view window on the near plane
-        (perspective) or in eye space (orthographic); width and height at least
-        1e-12 of the window's largest |coordinate| (and of near, for a perspective
-        camera) and at least 1e-99
-    near, far : distances along the view direction, 0 < near < far (orthographic: near < far),
+    Parameters
+    ----------
+    eye, look_at, up : (3,) float
+        World points and a direction; up must not be parallel to look_at - eye;
+        eye and look_at within +-1e99 (`WORLD_LIMIT`), up any finite nonzero vector.
+    window : (left, right, bottom, top)
+        The view window on the near plane (perspective) or in eye space
+        (orthographic); width and height at least 1e-12 of the window's largest
+        coordinate magnitude (and of near, for a perspective camera) and at least 1e-99.
+    near, far : float
+        Distances along the view direction, 0 < near < far (orthographic: near < far),
         within +-1e99 (a perspective far may be inf; a perspective near is >= 1e-99);
-        far - near at least 1e-12 of their magnitude and at least 1e-99
-    projection : "perspective" or "orthographic"
+        far - near at least 1e-12 of their magnitude and at least 1e-99.
+    projection : {"perspective", "orthographic"}
     """
 
     eye: tuple[float, float, float] = (0.0, 0.0, 5.0)

@@ -192,7 +192,7 @@ def lut_level_coherent(
         The previous level, 0 <= start <= N.
     count : bool
         Also return the number of comparisons of cos φ with table entries:
-        |level - start| + 1 when moving up, |level - start| + 2 when moving
+        abs(level - start) + 1 when moving up, abs(level - start) + 2 when moving
         down or staying (both neighbours are checked), fewer at the ends.
 
     Returns

@@ -235,7 +235,7 @@ def _plane(vertices, normals, origin):
 
 
 def halfway_vector(to_light: object, to_viewer: object) -> np.ndarray:
-    """Ĥ = (L̂ + V̂) / |L̂ + V̂|, Blinn's halfway vector.
+    """Ĥ = (L̂ + V̂) / ‖L̂ + V̂‖, Blinn's halfway vector.
 
     Raises
     ------

@@ -102,7 +102,7 @@ class RationalFunction:
 
 @dataclass(frozen=True, eq=False)
 class ComplexSurface:
-    """A complex function sampled on a grid: the surface z = min(|F|, clip) and arg F.
+    """A complex function sampled on a grid: the surface z = min(abs(F), clip) and arg F.
 
     Attributes
     ----------
@@ -192,7 +192,7 @@ def complex_surface(
     *,
     clip: float | None = DEFAULT_CLIP,
 ) -> ComplexSurface:
-    """Sample F(x + iy) on a uniform grid: heights |F| (clipped) and phases arg F.
+    """Sample F(x + iy) on a uniform grid: heights abs(F) (clipped) and phases arg F.
 
     Parameters
     ----------
@@ -208,7 +208,7 @@ def complex_surface(
         Heights above `clip` are cut down to it (default `DEFAULT_CLIP` = 4),
         so a pole near a grid point is a plateau, not a spike of height
         1e15 that shrinks the rest of the surface to a line. None keeps
-        |F| as it is. The phases are never clipped.
+        abs(F) as it is. The phases are never clipped.
 
     Returns
     -------
@@ -221,7 +221,7 @@ def complex_surface(
     ValueError
         If `function` returns another shape, a pole of a `RationalFunction` lies exactly on a grid point
         (naming the pole and the point), F is not finite at a grid point,
-        |F| overflows with ``clip=None``, or an argument breaks its rule.
+        abs(F) overflows with ``clip=None``, or an argument breaks its rule.
 
     Examples
     --------

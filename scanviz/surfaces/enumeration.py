@@ -276,11 +276,11 @@ def region_classes(columns: int, rows: int, cell: tuple[int, int]) -> np.ndarray
 def facet_sequence(columns: int, rows: int, cell: tuple[int, int]) -> np.ndarray:
     """(row, column) of every facet in processing order, from the viewpoint cell (Step III).
 
-    The sort key, which reproduces Fig. 2-2: the ring max(|dc|, |dr|); then
+    The sort key, which reproduces Fig. 2-2: the ring max(abs(dc), abs(dr)); then
     the region class; then, with D the depth axis (x when the viewpoint is
     left or right of the grid in y-range, y otherwise) and T the other, the
-    facets with |dD| = ring by increasing |dT|, then those with |dT| = ring by
-    increasing |dD|.
+    facets with abs(dD) = ring by increasing abs(dT), then those with abs(dT) = ring by
+    increasing abs(dD).
 
     Examples
     --------

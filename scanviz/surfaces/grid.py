@@ -269,7 +269,7 @@ class GridSurface:
         -----
         On the temporary grid (0-based indices a along x, b along y), for
         every interior point 1 <= a <= Nmaxx-2, 1 <= b <= Nmaxy-2 with
-        |z[b, a] - z[b, a-1]| + |z[b, a] - z[b-1, a]| > Zt, the planes
+        abs(z[b, a] - z[b, a-1]) + abs(z[b, a] - z[b-1, a]) > Zt, the planes
         a-1, a and b-1, b are kept; the first and last planes always are.
         With `max_step`, each gap between consecutive kept planes wider
         than R steps gets the planes s + R, s + 2R, ... (< the next kept

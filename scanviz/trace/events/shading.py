@@ -70,7 +70,7 @@ class RationalForms(Record):
     Built by `scanviz.shading.taylor.rational_forms`; the fields are the
     dissertation's scalars. With N(x, y) = A x + B y + C (x, y from the
     expansion point): a, b, c = L·A, L·B, L·C; aa, bb, cc = V·A, V·B, V·C;
-    |N|² = d x² + e xy + f y² + g x + h y + i; l, m, o, p, q, w the
+    ‖N‖² = d x² + e xy + f y² + g x + h y + i; l, m, o, p, q, w the
     numerator of 2 (N·L)(N·V); k_lv = L·V; ha, hb, hc = H·A, H·B, H·C
     (L, V, H unit). The methods evaluate the forms at sample offsets.
     """
@@ -99,23 +99,23 @@ class RationalForms(Record):
     hc: float
 
     def norm_squared(self, x: object, y: object) -> np.ndarray:
-        """|N(x, y)|² = d x² + e xy + f y² + g x + h y + i."""
+        """‖N(x, y)‖² = d x² + e xy + f y² + g x + h y + i."""
         _, x, y = _arrays(x, y)
         return self.d * x * x + self.e * x * y + self.f * y * y + self.g * x + self.h * y + self.i
 
     def cos_theta(self, x: object, y: object) -> np.ndarray:
-        """cos θ = (a x + b y + c) / sqrt(|N|²)."""
+        """cos θ = (a x + b y + c) / sqrt(‖N‖²)."""
         np, x, y = _arrays(x, y)
         return (self.a * x + self.b * y + self.c) / np.sqrt(self.norm_squared(x, y))
 
     def cos_phi(self, x: object, y: object) -> np.ndarray:
-        """cos φ = R̂·V̂ = (l x² + m xy + o y² + p x + q y + w) / |N|² - k_LV."""
+        """cos φ = R̂·V̂ = (l x² + m xy + o y² + p x + q y + w) / ‖N‖² - k_LV."""
         _, x, y = _arrays(x, y)
         numerator = self.l * x * x + self.m * x * y + self.o * y * y + self.p * x + self.q * y
         return (numerator + self.w) / self.norm_squared(x, y) - self.k_lv
 
     def n_dot_h(self, x: object, y: object) -> np.ndarray:
-        """N̂·Ĥ = (ha x + hb y + hc) / sqrt(|N|²): cos θ with H in place of L."""
+        """N̂·Ĥ = (ha x + hb y + hc) / sqrt(‖N‖²): cos θ with H in place of L."""
         np, x, y = _arrays(x, y)
         return (self.ha * x + self.hb * y + self.hc) / np.sqrt(self.norm_squared(x, y))
 
