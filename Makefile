@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: lab test lint bench clean chromium jail
+.PHONY: lab test lint bench docs clean chromium jail
 
 # numba's on-disk cache is keyed by each kernel's own file, not by the modules it calls:
 # `scanviz warmup` drops the kernels of changed files and of their importers (nothing else)
@@ -14,7 +14,7 @@ WARMUP := $(BIN)/python -m scanviz warmup
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[dev,lab,bench]"
+	$(BIN)/python -m pip install --quiet -e ".[dev,lab,bench,docs]"
 	touch $(STAMP)
 
 # .jupyter/labconfig holds the project's JupyterLab setting defaults (no news popup, no kernel dialog).
@@ -40,7 +40,7 @@ jail:
 	|| (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends bubblewrap)
 
 lint: $(STAMP)
-	$(BIN)/ruff check scanviz tests
+	$(BIN)/ruff check scanviz tests examples docs/conf.py
 
 test: lint chromium jail
 	$(WARMUP)
@@ -52,6 +52,12 @@ bench: $(STAMP)
 	$(WARMUP)
 	$(BIN)/python -m scanviz bench all --report bench-report.md --plot-dir bench-plots
 
+# The site: docs/_build/html/index.html. Offline; warnings are errors (-n: every reference resolves).
+docs: $(STAMP)
+	$(WARMUP)
+	$(BIN)/sphinx-build -n -W --keep-going -q -b html docs docs/_build/html
+	@echo "scanviz: the site is docs/_build/html/index.html"
+
 clean:
-	rm -rf $(VENV) .pytest_cache .hypothesis
+	rm -rf $(VENV) .pytest_cache .hypothesis docs/_build docs/lessons docs/gallery docs/generated docs/api.md
 	find . -name __pycache__ -prune -exec rm -rf {} +
