@@ -16,6 +16,17 @@ ROW_STYLES = {
 }
 
 
+class DisplaysWidget:
+    """A mixin: displaying the object in a notebook displays its `widget`."""
+
+    widget: widgets.Widget
+
+    def _ipython_display_(self) -> None:
+        from IPython.display import display
+
+        display(self.widget)
+
+
 def fmt(value: object, digits: int = 4) -> str:
     """A table cell: floats to `digits` significant digits, tuples joined, None as a dash."""
     if value is None:
@@ -116,6 +127,39 @@ def new_figure(
         spare.remove()
     quiet_canvas(fig)
     return fig, axes[:ncols]
+
+
+def pixel_image(axes, image, *, offset: float = 0.0, **style):
+    """Show an (H, W) or (H, W, 3) `image` as pixel squares, row 0 at the bottom (an AxesImage).
+
+    Pixel (x, y) is the unit square from (x + offset, y + offset): 0 lays it
+    on the pixel grid, -0.5 centres it on its sample. `style` goes to ``imshow``.
+    """
+    height, width = np.shape(image)[:2]
+    extent = (offset, width + offset, offset, height + offset)
+    return axes.imshow(image, origin="lower", extent=extent, interpolation="nearest", **style)
+
+
+def draw_outline(axes, contours, *, arrows: bool = False, **style) -> None:
+    """Each contour, an (N, 2) array, as a closed crimson line; `arrows`: each edge's direction.
+
+    `style` goes to ``plot`` (by default a 1.5 pt line at zorder 4).
+    """
+    style = {"color": "crimson", "linewidth": 1.5, "zorder": 4} | style
+    for contour in contours:
+        closed = np.vstack([contour, contour[:1]])
+        axes.plot(closed[:, 0], closed[:, 1], **style)
+        if not arrows:
+            continue
+        for start, end in zip(closed[:-1], closed[1:], strict=True):
+            middle, half = (start + end) / 2, (end - start) * 0.04
+            axes.annotate(
+                "",
+                xy=middle + half,
+                xytext=middle - half,
+                zorder=4,
+                arrowprops={"arrowstyle": "-|>", "color": "crimson"},
+            )
 
 
 def quiet_canvas(figure) -> None:

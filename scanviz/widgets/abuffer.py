@@ -17,7 +17,7 @@ from ..abuffer.masks import DEFAULT_MASK, mask_to_grid, popcount
 from ..pipeline import RenderResult
 from ..trace import Trace
 from ..trace.display import scroll_box
-from ._common import WIDEST, fmt, html_table, new_figure, say, status_label, swatch
+from ._common import WIDEST, fmt, html_table, new_figure, pixel_image, say, status_label, swatch
 from .stepper import Stepper, figure_widget, refresh_figure
 
 FRAGMENT_COLUMNS = ("#", "z", "zmax", "area", "bits", "color", "opacity", "object")
@@ -47,7 +47,21 @@ def _held(kind: str, fragments) -> str:
     return f"a list of {len(fragments)} fragment{'s' * (len(fragments) != 1)}"
 
 
-class FragmentInsertionView:
+class _EventPage:
+    """A view showing one event at a time as HTML: ``_page(event)``, and `_START` at step 0."""
+
+    _START = ""
+
+    def __init__(self, trace: Trace) -> None:
+        self.trace = trace
+        self.widget = widgets.HTML()
+
+    def show(self, step: int) -> None:
+        """Show event `step` (at step 0, what stepping will show)."""
+        self.widget.value = self._page(self.trace[step - 1]) if step else f"<i>{self._START}</i>"
+
+
+class FragmentInsertionView(_EventPage):
     """One ``fragment_inserted`` event: the case, the incoming fragment, before and after.
 
     Attributes
@@ -64,9 +78,11 @@ class FragmentInsertionView:
     Fragment 0 of polygon 0 reaches pixel (2, 3) at z = 0.5, partial (2 of 16 sub-samples, area 0.5); the pixel held nothing and, sorted by z, now holds a list of 1 fragment.
     """
 
+    _START = "step forward to insert this pixel's fragments one by one"
+
     def __init__(self, trace: Trace, layout: str) -> None:
-        self.trace, self.layout = trace, layout
-        self.widget = widgets.HTML()
+        super().__init__(trace)
+        self.layout = layout
 
     def narrate(self, step: int) -> str:
         """What insertion `step` did and why, in one sentence (step 0: the start)."""
@@ -95,13 +111,9 @@ class FragmentInsertionView:
             f"{_held(event.after_kind, event.after)}{done}."
         )
 
-    def show(self, step: int) -> None:
-        """Show the insertion done by event `step` (nothing at step 0)."""
-        if step == 0:
-            self.widget.value = "<i>step forward to insert this pixel's fragments one by one</i>"
-            return
-        event = self.trace[step - 1]
-        self.widget.value = (
+    def _page(self, event) -> str:
+        """The case, the incoming fragment, and the pixel's list before and after."""
+        return (
             f"<b>case {event.case}</b>: fragment {event.index} of polygon {event.polygon}"
             + fragment_table([event.fragment], self.layout)
             + f"<b>before</b> ({event.before_kind})"
@@ -138,7 +150,7 @@ def packer_html(event) -> str:
     )
 
 
-class PackerView:
+class PackerView(_EventPage):
     """One ``pixel_packed`` event: the pixel, its color and alpha, and the packer's steps.
 
     Attributes
@@ -146,9 +158,7 @@ class PackerView:
     widget : ipywidgets.HTML
     """
 
-    def __init__(self, trace: Trace) -> None:
-        self.trace = trace
-        self.widget = widgets.HTML()
+    _START = "step forward to pack the pixels one by one"
 
     def narrate(self, step: int) -> str:
         """What packing `step` produced and how, in one sentence (step 0: the start)."""
@@ -163,13 +173,9 @@ class PackerView:
             f"giving colour {fmt(tuple(event.color), 3)} and alpha {fmt(event.alpha, 3)}."
         )
 
-    def show(self, step: int) -> None:
-        """Show the pixel packed by event `step` (nothing at step 0)."""
-        if step == 0:
-            self.widget.value = "<i>step forward to pack the pixels one by one</i>"
-            return
-        event = self.trace[step - 1]
-        self.widget.value = f"<b>pixel ({event.x}, {event.y})</b> " + packer_html(event)
+    def _page(self, event) -> str:
+        """The pixel and its packer's steps."""
+        return f"<b>pixel ({event.x}, {event.y})</b> " + packer_html(event)
 
 
 class ABufferInspector:
@@ -228,9 +234,7 @@ class ABufferInspector:
             pixel = (packed[0].x, packed[0].y) if len(packed) else (width // 2, height // 2)
 
         fig, (ax,) = new_figure(1, width=4.0, height=4.0)
-        ax.imshow(
-            result.image, origin="lower", extent=(0, width, 0, height), interpolation="nearest"
-        )
+        pixel_image(ax, result.image)
         ax.set_title("click a pixel", fontsize=10)
         self.marker = Rectangle((0, 0), 1, 1, fill=False, ec="red", lw=1.5)
         ax.add_patch(self.marker)
@@ -245,15 +249,7 @@ class ABufferInspector:
         self.grids = []
         for grid_ax in grid_axes:
             self.grids.append(
-                grid_ax.imshow(
-                    np.zeros((rows, cols)),
-                    origin="lower",
-                    cmap="Greys",
-                    vmin=0,
-                    vmax=1,
-                    extent=(0, cols, 0, rows),
-                    interpolation="nearest",
-                )
+                pixel_image(grid_ax, np.zeros((rows, cols)), cmap="Greys", vmin=0, vmax=1)
             )
             grid_ax.set_xticks(range(cols + 1), labels=[])
             grid_ax.set_yticks(range(rows + 1), labels=[])

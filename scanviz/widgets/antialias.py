@@ -33,14 +33,12 @@ from matplotlib.patheffects import withStroke
 from ..antialias import dislop_line
 from ..antialias.compare import coverage_methods, intensity_per_length
 from ..antialias.line import canonical
-from ..antialias.peers import (
-    band_rectangle,
-)
+from ..antialias.peers import band_rectangle
 from ..conventions import as_array, short_repr
 from ..geometry import as_coordinates
 from ..trace import Trace
-from ._common import WIDEST, fmt, html_table, new_figure, note_label, pixel_region, say
-from .stepper import Stepper, draw_pixel_grid, figure_widget, first_steps, refresh_figure
+from ._common import WIDEST, fmt, html_table, new_figure, note_label, pixel_image, pixel_region
+from .stepper import Stepper, draw_pixel_grid, figure_widget, refresh_figure, stepper_of
 
 __all__ = [
     "DislopView",
@@ -151,15 +149,8 @@ class DislopView:
         """The coverage so far over the pixel grid, the band, the line and the step's markers."""
         fig, (ax,) = new_figure(1, width=6.0, height=5.4)
         self.region = pixel_region(np.vstack([p0, p1]), self.width, self.height, 2)
-        self.coverage = ax.imshow(
-            np.zeros((self.height, self.width)),
-            origin="lower",
-            extent=(0, self.width, 0, self.height),
-            interpolation="nearest",
-            cmap="Greys",
-            vmin=0.0,
-            vmax=1.0,
-        )
+        blank = np.zeros((self.height, self.width))
+        self.coverage = pixel_image(ax, blank, cmap="Greys", vmin=0.0, vmax=1.0)
         draw_pixel_grid(ax, self.region)
         corners = band_rectangle(p0, p1, self.width, self.height)
         if corners is not None:
@@ -206,9 +197,8 @@ class DislopView:
         pixels = [[self._pixels(e)[role] for role in ROLES] for e in self.steps]
         grid = np.array(pixels, np.int64).reshape(-1, len(ROLES), 2)
         self._xs, self._ys = grid[..., 0], grid[..., 1]
-        self._areas = np.array([[e.up, e.mid, e.low, e.spill] for e in self.steps]).reshape(
-            -1, len(ROLES)
-        )
+        areas = [[e.up, e.mid, e.low, e.spill] for e in self.steps]
+        self._areas = np.array(areas).reshape(-1, len(ROLES))
 
     def image(self, step: int) -> np.ndarray:
         """(height, width) float64: the areas the first `step` columns wrote, on the raster."""
@@ -464,10 +454,7 @@ def dislop_stepper(p0, p1, width: int, height: int, *, exact: bool = False) -> S
     _, trace = dislop_line(p0, p1, width, height, trace=True, exact=exact)
     exact_trace = None if exact else dislop_line(p0, p1, width, height, trace=True, exact=True)[1]
     view = DislopView(p0, p1, trace, exact_trace, width=width, height=height, exact=exact)
-    view.steps, note = first_steps(view.steps, "columns")
-    if note:
-        say(view.note, note)
-    return Stepper(view.steps, [view], title="DISLOP_L: one column per step")
+    return stepper_of(view, "DISLOP_L: one column per step", "columns")
 
 
 # ---------------------------------------------------------------- the peers side by side
@@ -522,16 +509,14 @@ def plot_coverage_comparison(p0, p1, width: int, height: int):
     side = (WIDEST - 0.9) / per_row  # inches per panel, the colour bars aside
     figure = Figure(figsize=(WIDEST, 2 * blocks * (side * aspect + 0.55) + 0.5))
     grid = figure.add_gridspec(2 * blocks, per_row + 1, width_ratios=[1] * per_row + [0.06])
-    extent = (0, exact.shape[1], 0, exact.shape[0])
-    shown = {"origin": "lower", "extent": extent, "interpolation": "nearest"}
     for k, (name, image) in enumerate(images.items()):
         row, column = 2 * (k // per_row), k % per_row
         top = figure.add_subplot(grid[row, column])
-        picture = top.imshow(image, cmap="Greys", vmin=0.0, vmax=1.0, **shown)
+        picture = pixel_image(top, image, cmap="Greys", vmin=0.0, vmax=1.0)
         intensity = fmt(float(image.sum()) / length, 4) if length else "–"
         top.set_title(f"{name}\nI/length = {intensity}", fontsize=9)
         bottom = figure.add_subplot(grid[row + 1, column])
-        error = bottom.imshow(errors[name], cmap="RdBu_r", vmin=-scale, vmax=scale, **shown)
+        error = pixel_image(bottom, errors[name], cmap="RdBu_r", vmin=-scale, vmax=scale)
         bottom.set_title(
             f"max |error| {fmt(float(np.abs(errors[name]).max(initial=0.0)), 3)}", fontsize=9
         )
@@ -749,9 +734,7 @@ def plot_post_antialias(before, after, *, zoom=None):
     from matplotlib.figure import Figure
 
     before, after = _check_image("before", before), _check_image("after", after)
-    if (
-        before.ndim != after.ndim
-    ):  # grey beside colour (post_antialias returns RGB): show both as RGB
+    if before.ndim != after.ndim:  # grey beside colour (post_antialias gives RGB): both RGB
         before, after = (np.dstack([i] * 3) if i.ndim == 2 else i for i in (before, after))
     if before.shape != after.shape:
         raise ValueError(
@@ -767,8 +750,7 @@ def plot_post_antialias(before, after, *, zoom=None):
     outline = {"fill": False, "ec": "tab:orange", "lw": 1.5}
     for k, (name, image) in enumerate((("before", before), ("after", after))):
         whole = figure.add_subplot(grid[0, 2 * k])
-        whole.imshow(image, origin="lower", extent=(0, width, 0, height),
-                     interpolation="nearest", **grey)  # fmt: skip
+        pixel_image(whole, image, **grey)
         whole.add_patch(Rectangle((x_start, y_start), x_end - x_start, y_end - y_start, **outline))
         whole.set_title(name, fontsize=9)
         part = figure.add_subplot(grid[0, 2 * k + 1])

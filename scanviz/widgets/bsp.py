@@ -17,12 +17,11 @@ import html
 import ipywidgets as widgets
 import numpy as np
 
-from ..trace import Recorder, Trace
-from ..visibility import solve, zbuffer
+from ..trace import Trace
 from ..visibility.bsp import BSP
-from ._common import WIDEST, html_table, listed, quiet_canvas, say, status_label
-from .stepper import Stepper, figure_widget, first_steps, refresh_figure
-from .visibility import outline_samples, polygon_color, polygon_colors
+from ._common import WIDEST, html_table, listed, pixel_image, quiet_canvas, status_label
+from .stepper import Stepper, figure_widget, refresh_figure, stepper_of
+from .visibility import against_zbuffer, polygon_color, polygon_colors, solve_traced
 
 STEP_KINDS = ("bsp_node", "polygon_split", "bsp_visited")
 TRACE_KINDS = (*STEP_KINDS, "paint_order", "pixel_painted")
@@ -118,13 +117,9 @@ class BspView:
         ax_now, ax_final, ax_z = (fig.add_subplot(grid[1, k]) for k in range(3))
         self._draw_tree(ax_tree)
         self._draw_partition(ax_part)
-        extent = (-0.5, self.width - 0.5, -0.5, self.height - 0.5)  # pixel squares on samples
         blank = polygon_colors(np.full((self.height, self.width), -1))
-        self.so_far = ax_now.imshow(blank, origin="lower", extent=extent, interpolation="nearest")
-        wrong = self.result.polygon != zbuffer_result.polygon
-        for ax, ids in ((ax_final, self.result.polygon), (ax_z, zbuffer_result.polygon)):
-            ax.imshow(polygon_colors(ids), origin="lower", extent=extent, interpolation="nearest")
-            outline_samples(ax, wrong, offset=-0.5)
+        self.so_far = pixel_image(ax_now, blank, offset=-0.5)  # pixel squares on samples
+        against_zbuffer(ax_final, ax_z, self.result.polygon, zbuffer_result.polygon, offset=-0.5)
         titles = ("painted so far", "BSP: final", "z-buffer (red: BSP differs)")
         for ax, title in zip((ax_now, ax_final, ax_z), titles, strict=True):
             ax.set_title(title, fontsize=10)
@@ -392,9 +387,6 @@ def bsp_stepper(polygons, width: int, height: int, **options) -> Stepper:
     fields = {"root", "order", "candidates", "seed", "sequence"}
     chosen = BSP(**{k: v for k, v in options.items() if k in fields})
     rest = {k: v for k, v in options.items() if k not in fields}
-    result = solve(chosen, polygons, width, height, trace=Recorder(TRACE_KINDS), **rest)
-    view = BspView(result.trace, result, zbuffer(polygons, width, height, **rest))
-    steps, note = first_steps(view.steps, "steps")
-    if note:
-        say(view.note, note)
-    return Stepper(steps, [view], title="BSP tree: build, then display")
+    result, reference = solve_traced(chosen, polygons, width, height, TRACE_KINDS, **rest)
+    view = BspView(result.trace, result, reference)
+    return stepper_of(view, "BSP tree: build, then display", "steps")

@@ -30,12 +30,12 @@ import numpy as np
 from matplotlib.patches import Polygon as PolygonPatch
 from matplotlib.patches import Rectangle
 
-from ..trace import Recorder, Trace
-from ..visibility import ScreenPolygons, solve, zbuffer
+from ..trace import Trace
+from ..visibility import ScreenPolygons
 from ..visibility.painter import Painter, sort_key
-from ._common import WIDEST, fmt, html_table, new_figure, note_label, say
-from .stepper import Stepper, figure_widget, first_steps, refresh_figure
-from .visibility import outline_samples, polygon_colors
+from ._common import WIDEST, fmt, html_table, new_figure, note_label, pixel_image
+from .stepper import Stepper, figure_widget, refresh_figure, stepper_of
+from .visibility import against_zbuffer, polygon_colors, solve_traced
 
 DECISION_KINDS = (
     "polygons_sorted",
@@ -61,15 +61,17 @@ TEST_QUESTIONS = {
 DIGITS = 3  # significant digits of the depths in the narration
 
 
-def _image_axes(axes, ids: np.ndarray, title: str):
-    height, width = ids.shape
-    image = axes.imshow(
-        polygon_colors(ids), origin="lower", extent=(0, width, 0, height), interpolation="nearest"
-    )
-    axes.set_title(title, fontsize=10)
-    axes.set_xlim(0, width)
-    axes.set_ylim(0, height)
-    return image
+def _painting_figure(result, zbuffer_result, titles: tuple[str, str, str]):
+    """(figure, axes, painted image, samples that differ): painted so far, final and z-buffer."""
+    height, width = result.polygon.shape
+    fig, axes = new_figure(3, width=WIDEST, height=3.3)
+    painted_image = pixel_image(axes[0], polygon_colors(np.full((height, width), -1)))
+    wrong = against_zbuffer(axes[1], axes[2], result.polygon, zbuffer_result.polygon)
+    for ax, title in zip(axes, titles, strict=True):
+        ax.set_title(title, fontsize=10)
+        ax.set_xlim(0, width)
+        ax.set_ylim(0, height)
+    return fig, axes, painted_image, wrong
 
 
 def _check_steps(steps: str) -> str:
@@ -90,9 +92,12 @@ class _Painting:
 
     def image(self, labels, partial: str | None = None, count: int = 0) -> np.ndarray:
         """(H, W) polygon ids after painting the pieces `labels`, then `count` samples of `partial`."""
-        ids = np.full(self.shape, -1, np.int64)
         events = [e for label in labels for e in self.of_piece.get(label, ())]
-        events += self.of_piece.get(partial, [])[:count]
+        return self.ids(events + self.of_piece.get(partial, [])[:count])
+
+    def ids(self, events) -> np.ndarray:
+        """(H, W) polygon ids after the ``pixel_painted`` `events`, in order (-1: none painted)."""
+        ids = np.full(self.shape, -1, np.int64)
         for e in events:
             if e.painted:
                 ids[e.y, e.x] = e.polygon
@@ -227,21 +232,14 @@ class DepthSortView:
         self.steps_mode = _check_steps(steps)
         marks, self._shown = _display(self.decisions, self._painting, self.steps_mode)
         self.steps = Trace(marks)
-        fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=WIDEST, height=3.3)
-        self.painted_image = _image_axes(
-            ax_painted, np.full((height, width), -1), "painted so far (S solid, S' dashed)"
-        )
-        _image_axes(ax_final, result.polygon, "depth sort")
-        _image_axes(ax_z, zbuffer_result.polygon, "z-buffer (red: differs)")
-        wrong = result.polygon != zbuffer_result.polygon
-        for ax in (ax_final, ax_z):
-            outline_samples(ax, wrong)
+        titles = ("painted so far (S solid, S' dashed)", "depth sort", "z-buffer (red: differs)")
+        fig, axes, self.painted_image, _ = _painting_figure(result, zbuffer_result, titles)
         self.s_outline = PolygonPatch(np.zeros((3, 2)), fill=False, ec="black", lw=2.5)
         self.other_outline = PolygonPatch(np.zeros((3, 2)), fill=False, ec="black", lw=1.5, ls="--")
-        ax_painted.add_patch(self.s_outline)
-        ax_painted.add_patch(self.other_outline)
+        axes[0].add_patch(self.s_outline)
+        axes[0].add_patch(self.other_outline)
         fig.tight_layout()
-        self.figure, self.axes = fig, (ax_painted, ax_final, ax_z)
+        self.figure, self.axes = fig, tuple(axes)
         self.list_table, self.tests_table = widgets.HTML(), widgets.HTML()
         self.settled, self.log = widgets.HTML(), widgets.HTML()
         self.note = note_label(note)
@@ -508,13 +506,10 @@ class PainterView:
                 if k + 1 == len(pixels) or pixels[k + 1].piece != e.piece
             ]
         self.steps = Trace(sort[:1] + [pixels[end - 1] for end in self._ends])
-        fig, (ax_painted, ax_final, ax_z) = new_figure(3, width=WIDEST, height=3.3)
-        self.painted_image = _image_axes(ax_painted, np.full((height, width), -1), "painted so far")
-        _image_axes(ax_final, result.polygon, f"painter's ({key})")
-        _image_axes(ax_z, zbuffer_result.polygon, "z-buffer (red: painter differs)")
-        wrong = result.polygon != zbuffer_result.polygon
-        for ax in (ax_final, ax_z):
-            outline_samples(ax, wrong)
+        titles = ("painted so far", f"painter's ({key})", "z-buffer (red: painter differs)")
+        fig, (ax_painted, _, _), self.painted_image, wrong = _painting_figure(
+            result, zbuffer_result, titles
+        )
         self.current_outline = PolygonPatch(np.zeros((3, 2)), fill=False, ec="black", lw=2.5)
         self.current_marker = Rectangle((0, 0), 1, 1, fill=False, ec="black", lw=2, visible=False)
         ax_painted.add_patch(self.current_outline)
@@ -539,10 +534,7 @@ class PainterView:
         """Show the image after the first `step` steps and the polygon being painted."""
         self.step = int(step)
         count = self.painted(self.step)
-        ids = np.full(self._painting.shape, -1, np.int64)
-        for e in self._painting.events[:count]:
-            if e.painted:
-                ids[e.y, e.x] = e.polygon
+        ids = self._painting.ids(self._painting.events[:count])
         self.painted_image.set_data(polygon_colors(ids))
         current = self._painting.events[count - 1] if count else None
         self.current_marker.set_visible(current is not None and self.steps_mode == "pixel")
@@ -640,18 +632,11 @@ def depth_sort_stepper(
 
     _check_steps(steps)
     algorithm = DepthSort(max_splits=options.pop("max_splits", None))
-    result = solve(algorithm, polygons, width, height, trace=Recorder(), **options)
-    reference = zbuffer(polygons, width, height, **options)
+    result, reference = solve_traced(algorithm, polygons, width, height, **options)
     view = DepthSortView(result.trace, result, reference, steps=steps)
-    view.steps, note = first_steps(view.steps, "steps")
-    if note:
-        say(view.note, note)
     painted = "piece" if steps == "polygon" else "sample"
-    return Stepper(
-        view.steps,
-        [view],
-        title=f"depth sort: one pair, swap or split per step, then one {painted} painted per step",
-    )
+    title = f"depth sort: one pair, swap or split per step, then one {painted} painted per step"
+    return stepper_of(view, title, "steps")
 
 
 def painter_stepper(
@@ -689,14 +674,8 @@ def painter_stepper(
     (3, '20 samples differ from the z-buffer (outlined in red)')
     """
     _check_steps(steps)
-    recorder = Recorder(kinds=["polygons_sorted", "pixel_painted"])
-    result = solve(Painter(key=key), polygons, width, height, trace=recorder, **options)
-    reference = zbuffer(polygons, width, height, **options)
+    kinds = ["polygons_sorted", "pixel_painted"]
+    result, reference = solve_traced(Painter(key=key), polygons, width, height, kinds, **options)
     view = PainterView(result.trace, result, reference, key=key, steps=steps)
-    view.steps, note = first_steps(view.steps)
-    if note:
-        say(view.note, note)
     painted = "polygon" if steps == "polygon" else "sample"
-    return Stepper(
-        view.steps, [view], title=f"painter's algorithm (sorted on {key}): one {painted} per step"
-    )
+    return stepper_of(view, f"painter's algorithm (sorted on {key}): one {painted} per step")

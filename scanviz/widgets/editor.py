@@ -14,7 +14,7 @@ import numpy as np
 from ..geometry import Polygon
 from ..raster import scan_convert
 from ..trace.display import scroll_box
-from ._common import html_table, new_figure, say, status_label
+from ._common import DisplaysWidget, html_table, new_figure, say, status_label
 from .stepper import coverage_image, figure_widget, refresh_figure
 
 EDGE_COLUMNS = ("edge", "(x0, y0)", "(x1, y1)", "bucket", "row_end", "x", "dx/dy", "winding")
@@ -45,7 +45,7 @@ def format_vertices(vertices: np.ndarray) -> str:
     return " ".join(f"{x:.10g},{y:.10g}" for x, y in np.asarray(vertices, float))
 
 
-class PolygonEditor:
+class PolygonEditor(DisplaysWidget):
     """A polygon as editable text (and draggable vertices) with its live scan conversion.
 
     Parameters
@@ -94,9 +94,8 @@ class PolygonEditor:
             ax, np.zeros((height, width), bool), sample=sample
         )
         (self.outline,) = ax.plot([], [], color="crimson", lw=1.5, zorder=4)
-        (self.handles,) = ax.plot(
-            [], [], "o", color="crimson", ms=6, zorder=5
-        )  # over the sample dots
+        # The vertex handles, over the sample dots.
+        (self.handles,) = ax.plot([], [], "o", color="crimson", ms=6, zorder=5)
         ax.set_xlim(-0.5, width + 0.5)
         ax.set_ylim(-0.5, height + 0.5)
         ax.set_aspect("equal")
@@ -209,8 +208,3 @@ class PolygonEditor:
             moved[self._dragging] = np.round((event.xdata, event.ydata), 2)
         self._dragging = None
         self.text.value = format_vertices(moved)
-
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
-
-        display(self.widget)

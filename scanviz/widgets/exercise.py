@@ -10,6 +10,7 @@ from ..exercises.compare import MISSING, aligned, first_difference
 from ..exercises.core import Outcome
 from ..exercises.display import comparison_html, event_fields, event_title
 from ..exercises.verdict import Verdict
+from ._common import DisplaysWidget
 
 WINDOW = 4  # events shown before and after the current one
 
@@ -33,7 +34,7 @@ def _event_row(index: int, event: object, current: bool, differs: bool) -> str:
     )
 
 
-class TraceComparison:
+class TraceComparison(DisplaysWidget):
     """Your events and the reference's side by side, starting at the first difference.
 
     Parameters
@@ -131,8 +132,3 @@ class TraceComparison:
             )
         self.prev_button.disabled = index <= self.slider.min
         self.next_button.disabled = index >= self.slider.max
-
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
-
-        display(self.widget)

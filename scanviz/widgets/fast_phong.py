@@ -26,8 +26,18 @@ from ..geometry import as_coordinates
 from ..shading.fast_phong import ShadedTriangle, exact_phong_triangle, fast_phong_triangle
 from ..trace import Recorder, Trace
 from ..trace.display import scroll_box
-from ._common import WIDEST, fmt, html_table, new_figure, note_label, pixel_region, say, swatch
-from .stepper import Stepper, draw_pixel_grid, figure_widget, first_steps, refresh_figure
+from ._common import (
+    WIDEST,
+    draw_outline,
+    fmt,
+    html_table,
+    new_figure,
+    note_label,
+    pixel_image,
+    pixel_region,
+    swatch,
+)
+from .stepper import Stepper, draw_pixel_grid, figure_widget, refresh_figure, stepper_of
 
 KINDS = ("fast_phong_setup", "fast_phong_pixel")
 UNSHADED = (0.85, 0.85, 0.85)  # covered samples not shaded yet
@@ -115,15 +125,10 @@ class FastPhongView:
         """Fast Phong so far beside its error, over the pixel grid, with the pixel markers."""
         fig, (ax_fast, ax_error) = new_figure(2, width=WIDEST, height=4.4)
         region = pixel_region(vertices, self.width, self.height, 1)
-        extent = (0, self.width, 0, self.height)
-        self.picture = ax_fast.imshow(
-            self._background, origin="lower", extent=extent, interpolation="nearest"
-        )
-        self.error_image = ax_error.imshow(
+        self.picture = pixel_image(ax_fast, self._background)
+        self.error_image = pixel_image(
+            ax_error,
             np.full((self.height, self.width), np.nan),
-            origin="lower",
-            extent=extent,
-            interpolation="nearest",
             cmap="magma_r",
             vmin=0.0,
             vmax=max(float(self._errors.max(initial=0.0)), 1.0),
@@ -132,10 +137,9 @@ class FastPhongView:
             "levels", fontsize=9
         )
         self.pixel_patches, self.sample_dots = [], []
-        closed = np.vstack([vertices, vertices[:1]])
         for ax in (ax_fast, ax_error):
             draw_pixel_grid(ax, region)
-            ax.plot(closed[:, 0], closed[:, 1], color="crimson", lw=1.2, zorder=3)
+            draw_outline(ax, [vertices], linewidth=1.2, zorder=3)
             if self.setup is not None:
                 ax.plot(*self.setup.origin, "*", color="deepskyblue", mec="black", ms=12, zorder=5)
             patch = Rectangle((0, 0), 1, 1, fill=False, ec="black", lw=2, zorder=4, visible=False)
@@ -382,10 +386,7 @@ def fast_phong_stepper(
     )
     exact = exact_phong_triangle(*arguments, **options)
     view = FastPhongView(vertices, shaded.trace, exact, width=width, height=height, sample=sample)
-    view.steps, note = first_steps(view.steps, "samples")
-    if note:
-        say(view.note, note)
-    return Stepper(view.steps, [view], title="fast Phong: one sample per step")
+    return stepper_of(view, "fast Phong: one sample per step", "samples")
 
 
 def _add_legend(fig) -> None:

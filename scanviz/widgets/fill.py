@@ -17,7 +17,7 @@ from matplotlib.patches import Rectangle
 from ..geometry import Polygon
 from ..raster.fill import ColourWash, Pattern, Solid, VertexColours, fill_polygon
 from ..trace import Recorder, Trace
-from ._common import fmt, new_figure, note_label
+from ._common import draw_outline, fmt, new_figure, note_label, pixel_image
 from .scan import ScanNarrator
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .zbuffer import narrate_interpolation
@@ -73,12 +73,8 @@ class FillView:
         self.spans = [e for e in trace if e.kind == self.kind]
         height, width = image.shape[:2]
         fig, (ax,) = new_figure(1, width=4.5, height=4.5)
-        self.picture = ax.imshow(
-            image, origin="lower", extent=(0, width, 0, height), interpolation="nearest"
-        )
-        for contour in Polygon(polygon).contours:
-            closed = np.vstack([contour, contour[:1]])
-            ax.plot(closed[:, 0], closed[:, 1], color="crimson", lw=1.2)
+        self.picture = pixel_image(ax, image)
+        draw_outline(ax, Polygon(polygon).contours, linewidth=1.2, zorder=2)
         self.span_patch = Rectangle((0, 0), 0, 1, fill=False, ec="black", lw=2, visible=False)
         ax.add_patch(self.span_patch)
         ax.set_xlim(0, width)

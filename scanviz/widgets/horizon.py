@@ -8,14 +8,10 @@ import ipywidgets as widgets
 import numpy as np
 from matplotlib.collections import LineCollection
 
-from ..surfaces import (
-    GridSurface,
-    View,
-    floating_horizon,
-)
+from ..surfaces import GridSurface, View, floating_horizon
 from ..surfaces.horizon import FLAG_PAIRS, HorizonResult
 from ..trace import Recorder, Trace
-from ._common import WIDEST, html_table, new_figure
+from ._common import WIDEST, html_table, new_figure, pixel_image
 from .perimeter import VISIBLE
 from .stepper import Stepper, figure_widget, refresh_figure
 from .surface_grid import CURRENT, check_surface_view
@@ -68,11 +64,7 @@ class HorizonView:
         self._read_events(trace)
         self.step = 0
         fig, (axes,) = new_figure(1, width=min(WIDEST, 6.4), height=5.0)
-        axes.imshow(
-            np.ones((self.height, self.width, 3)),
-            origin="lower",
-            extent=(-0.5, self.width - 0.5, -0.5, self.height - 0.5),
-        )
+        pixel_image(axes, np.ones((self.height, self.width, 3)), offset=-0.5)
         self.drawn = LineCollection([], colors=VISIBLE, lw=1)
         self.current_drawn = LineCollection([], colors=CURRENT, lw=2.2, zorder=4)
         axes.add_collection(self.drawn)

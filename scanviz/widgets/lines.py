@@ -73,12 +73,8 @@ class LineView:
         self._origin = (min(x0, x1) - 1, min(y0, y1) - 1)
         self._xs, self._ys = xs - self._origin[0], ys - self._origin[1]
         width, height = abs(x1 - x0) + 3, abs(y1 - y0) + 3
-        extent = (
-            self._origin[0],
-            self._origin[0] + width,
-            self._origin[1],
-            self._origin[1] + height,
-        )
+        x_origin, y_origin = self._origin
+        extent = (x_origin, x_origin + width, y_origin, y_origin + height)
 
         # Small enough that the table fits beside it in most notebooks (else it wraps below).
         scale = min(4.5 / width, 5.0 / height, 0.45)

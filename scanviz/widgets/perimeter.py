@@ -19,14 +19,9 @@ from matplotlib.colors import to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ..surfaces import (
-    GridSurface,
-    PerimeterResult,
-    View,
-    floating_perimeter,
-)
+from ..surfaces import GridSurface, PerimeterResult, View, floating_perimeter
 from ..trace import Trace
-from ._common import WIDEST, html_table, new_figure, note_label
+from ._common import WIDEST, html_table, new_figure, note_label, pixel_image
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
 from .surface_grid import CURRENT, GridFromAbove, check_surface_view, enumerated_event
 
@@ -180,15 +175,10 @@ class PerimeterView:
         return np.where(coverage >= 0, order[np.maximum(coverage, 0)], 0)  # facet numbers, 0 none
 
     def _draw_screen(self, axes, region) -> None:
-        extent = (-0.5, self.width - 0.5, -0.5, self.height - 0.5)
         blank = np.zeros((self.height, self.width, 4))
         if self._coverage is not None:
-            self.coverage_image = axes.imshow(
-                blank, origin="lower", extent=extent, interpolation="nearest"
-            )
-        self.points_image = axes.imshow(
-            blank, origin="lower", extent=extent, interpolation="nearest"
-        )
+            self.coverage_image = pixel_image(axes, blank, offset=-0.5)
+        self.points_image = pixel_image(axes, blank, offset=-0.5)
         self.curves = {}
         for name, color in PERIMETER_COLORS.items():
             (self.curves[name],) = axes.plot([], [], color=color, lw=1.3, label=name)

@@ -16,7 +16,7 @@ import numpy as np
 from ..pipeline.result import RenderResult
 from ..scene.model import Light
 from ..vectors import unit_vectors
-from ._common import new_figure, say, status_label
+from ._common import DisplaysWidget, new_figure, say, status_label
 from .stepper import figure_widget, refresh_figure
 
 FIGURE_INCHES = 5.0  # the image's square figure: with the sliders, inside `_common.WIDEST`
@@ -46,7 +46,7 @@ def light_direction(camera, azimuth: float, elevation: float) -> tuple[float, fl
     return tuple(float(c) for c in -toward)
 
 
-class RelightView:
+class RelightView(DisplaysWidget):
     """Sliders for one directional light and every object's material, over the relit image.
 
     Every object is relit as made wholly of its own material with the
@@ -146,11 +146,6 @@ class RelightView:
         refresh_figure(self.figure, self._canvas)
         height, width = self.current.polygon.shape
         say(self.status, f"relit {width}x{height} in {spent * 1e3:.0f} ms (visibility not rerun)")
-
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
-
-        display(self.widget)
 
 
 def _slider(value: float, low: float, high: float, step: float, description: str):

@@ -17,14 +17,8 @@ from ..raster import scan_convert
 from ..trace import AetSorted, Trace
 from ..trace.display import scroll_box
 from ..trace.table import format_number
-from ._common import WIDEST, html_table, listed, new_figure
-from .stepper import (
-    SampleDots,
-    Stepper,
-    draw_pixel_grid,
-    figure_widget,
-    refresh_figure,
-)
+from ._common import WIDEST, draw_outline, html_table, listed, new_figure, pixel_image
+from .stepper import SampleDots, Stepper, draw_pixel_grid, figure_widget, refresh_figure
 
 DETAIL_LIMIT = 128 * 128  # larger rasters get no per-pixel grid lines
 
@@ -310,17 +304,14 @@ class ScanConversionView:
         # Two square panels side by side, as large as a notebook's width allows.
         panel = min(0.4 * max(self.width, self.height) + 1, (WIDEST - 0.4) / 2)
         self.figure, (axes, final_axes) = new_figure(2, width=2 * panel + 0.4, height=panel + 0.4)
-        shown = {"origin": "lower", "cmap": "Blues", "vmin": 0, "vmax": 1.6 * max(final.max(), 1)}
-        shown |= {"extent": (0, self.width, 0, self.height), "interpolation": "nearest"}
-        self.image = axes.imshow(np.zeros_like(final), **shown)
-        final_axes.imshow(final, **shown)
+        shown = {"cmap": "Blues", "vmin": 0, "vmax": 1.6 * max(final.max(), 1)}
+        self.image = pixel_image(axes, np.zeros_like(final), **shown)
+        pixel_image(final_axes, final, **shown)
         if self.width * self.height <= DETAIL_LIMIT:
             for ax in (axes, final_axes):
                 draw_pixel_grid(ax, (0, self.width, 0, self.height))
         for ax in (axes, final_axes):
-            for contour in self.polygon.contours:
-                closed = np.vstack([contour, contour[:1]])
-                ax.plot(closed[:, 0], closed[:, 1], color="crimson", linewidth=1.2, zorder=4)
+            draw_outline(ax, self.polygon.contours, linewidth=1.2)
             ax.set(xlim=(0, self.width), ylim=(0, self.height), aspect="equal")
         final_axes.set_title("final image")
         self.active_edges = LineCollection([], colors="darkorange", linewidths=3, zorder=5)

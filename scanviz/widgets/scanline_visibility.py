@@ -16,12 +16,11 @@ import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.patches import Rectangle
 
-from ..trace import Recorder, Trace
-from ..visibility import solve, zbuffer
+from ..trace import Trace
 from ..visibility.scanline_visibility import Scanline
-from ._common import WIDEST, fmt, html_table, listed, new_figure, note_label
+from ._common import WIDEST, fmt, html_table, listed, new_figure, note_label, pixel_image
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
-from .visibility import outline_samples, polygon_color, polygon_colors
+from .visibility import against_zbuffer, polygon_color, polygon_colors, solve_traced
 
 SCANLINE_KINDS = ("surface_table_built", "active_surfaces", "visible_span")
 BAND_COLORS = {"decided": (1.0, 0.91, 0.66, 0.6), "reused": (0.70, 0.92, 0.70, 0.6)}
@@ -107,16 +106,10 @@ class ScanlineVisibilityView:
             (0, low - pad), 0, high - low + 2 * pad, fill=False, ec="black", lw=2, visible=False
         )
         ax_slice.add_patch(self.current_band)
-        extent = (0, width, 0, height)
         empty = polygon_colors(np.full((height, width), -1))
-        self.decided_image = ax_decided.imshow(
-            empty, origin="lower", extent=extent, interpolation="nearest"
-        )
+        self.decided_image = pixel_image(ax_decided, empty)
         self.scanline = ax_decided.axhline(0, color="black", lw=1.5, ls="--", visible=False)
-        wrong = result.polygon != zbuffer_result.polygon
-        for ax, ids in ((ax_final, result.polygon), (ax_zbuffer, zbuffer_result.polygon)):
-            ax.imshow(polygon_colors(ids), origin="lower", extent=extent, interpolation="nearest")
-            outline_samples(ax, wrong)
+        against_zbuffer(ax_final, ax_zbuffer, result.polygon, zbuffer_result.polygon)
         titles = (
             "xz slice of the scanline",
             "decided so far",
@@ -312,8 +305,7 @@ def scanline_visibility_stepper(polygons, width: int, height: int, **options) ->
     (9, 3)
     """
     chosen = Scanline(coherence=options.pop("coherence", True))
-    result = solve(chosen, polygons, width, height, **options, trace=Recorder(kinds=SCANLINE_KINDS))
-    reference = zbuffer(polygons, width, height, **options)
+    result, reference = solve_traced(chosen, polygons, width, height, SCANLINE_KINDS, **options)
     trace, note = first_steps(result.trace)
     view = ScanlineVisibilityView(trace, result, reference, note=note)
     return Stepper(trace, [view], title="scanline visibility: one span per step")

@@ -8,7 +8,7 @@ import numpy as np
 from ..conventions import SAMPLE_MODES, check_raster_size, sample_offset
 from ..geometry import Polygon
 from ..raster import scan_convert
-from ._common import WIDEST, new_figure
+from ._common import WIDEST, DisplaysWidget, draw_outline, new_figure
 from .stepper import SampleDots, coverage_image, figure_widget, refresh_figure
 
 
@@ -52,7 +52,7 @@ def plot_scan(polygon, result, *, sample: str = "corner", step: int | None = Non
         rows = [e.y for e in result.trace[:step] if hasattr(e, "y")]
         row = rows[-1] if rows else None
     coverage_image(ax, covered, alpha=0.9, sample=sample)
-    _draw_outline(ax, polygon, arrows=True)
+    draw_outline(ax, polygon.contours, arrows=True)
     if row is not None:
         ax.axhline(row + sample_offset(sample), color="orange", linewidth=2, zorder=5)
     ax.set_xlim(0, width)
@@ -61,24 +61,6 @@ def plot_scan(polygon, result, *, sample: str = "corner", step: int | None = Non
     ax.set_xlabel("x")
     ax.set_ylabel("y (up)")
     return ax
-
-
-def _draw_outline(ax, polygon: Polygon, *, arrows: bool = False) -> None:
-    """The polygon's contours in crimson, with an arrow mid-edge showing each edge's direction."""
-    for contour in polygon.contours:
-        closed = np.vstack([contour, contour[:1]])
-        ax.plot(closed[:, 0], closed[:, 1], color="crimson", linewidth=1.5, zorder=4)
-        if not arrows:
-            continue
-        for start, end in zip(closed[:-1], closed[1:], strict=True):
-            middle, half = (start + end) / 2, (end - start) * 0.04
-            ax.annotate(
-                "",
-                xy=middle + half,
-                xytext=middle - half,
-                zorder=4,
-                arrowprops={"arrowstyle": "-|>", "color": "crimson"},
-            )
 
 
 WHERE = {
@@ -93,7 +75,7 @@ WHERE = {
 }
 
 
-class SamplingView:
+class SamplingView(DisplaysWidget):
     """A polygon's fill under corner or center sampling, with the sample points that decide it.
 
     The pixel squares a scan conversion fills, each pixel's sample point as
@@ -159,7 +141,7 @@ class SamplingView:
         )
         ax.add_collection(self.only_here)
         ax.add_collection(self.only_there)
-        _draw_outline(ax, self.polygon)
+        draw_outline(ax, self.polygon.contours)
         ax.set(xlim=(0, self.width), ylim=(0, self.height), aspect="equal")
         self.title = ax.set_title("", fontsize=10)
         self.figure.tight_layout()
@@ -197,11 +179,6 @@ class SamplingView:
             f"point is, and its sample is {WHERE[sample]}. {moved}"
         )
         refresh_figure(self.figure, self._canvas)
-
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
-
-        display(self.widget)
 
 
 def _pixels(count: int) -> str:

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..conventions import sample_offset
 from ..trace import Trace
+from ._common import DisplaysWidget, pixel_image, say
 from .model import StepModel
 
 
@@ -187,16 +188,7 @@ def coverage_image(axes, covered: np.ndarray, *, alpha: float | None = None, sam
         Update them with ``image.set_data(covered)`` and ``dots.show(covered)``.
     """
     height, width = covered.shape
-    image = axes.imshow(
-        covered,
-        origin="lower",
-        cmap="Blues",
-        vmin=0,
-        vmax=1.6,
-        alpha=alpha,
-        extent=(0, width, 0, height),
-        interpolation="nearest",
-    )
+    image = pixel_image(axes, covered, cmap="Blues", vmin=0, vmax=1.6, alpha=alpha)
     draw_pixel_grid(axes, (0, width, 0, height))
     dots = None
     if sample is not None and SampleDots.fit(covered.shape):
@@ -208,7 +200,7 @@ def coverage_image(axes, covered: np.ndarray, *, alpha: float | None = None, sam
 SPEEDS = {"slow": 900, "normal": 300, "fast": 80}  # milliseconds between steps when playing
 
 
-class Stepper:
+class Stepper(DisplaysWidget):
     """Step through a trace with Play, a slider and Prev/Next; every view shows the step.
 
     Parameters
@@ -331,11 +323,6 @@ class Stepper:
         for view in self.views:
             view.show(step)
 
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
-
-        display(self.widget)
-
 
 def first_steps(steps, what: str = "events"):
     """(at most `Stepper.MAX_STEPS` of `steps`, a note saying what was cut or "").
@@ -347,9 +334,16 @@ def first_steps(steps, what: str = "events"):
     """
     if len(steps) <= Stepper.MAX_STEPS:
         return steps, ""
-    return steps[
-        : Stepper.MAX_STEPS
-    ], f"{len(steps):,} {what}: showing the first {Stepper.MAX_STEPS:,}."
+    note = f"{len(steps):,} {what}: showing the first {Stepper.MAX_STEPS:,}."
+    return steps[: Stepper.MAX_STEPS], note
+
+
+def stepper_of(view, title: str, what: str = "events") -> Stepper:
+    """A `Stepper` over ``view.steps``, cut to `Stepper.MAX_STEPS` (``view.note`` then says so)."""
+    view.steps, note = first_steps(view.steps, what)
+    if note:
+        say(view.note, note)
+    return Stepper(view.steps, [view], title=title)
 
 
 def _too_long_message(steps: int) -> str:

@@ -14,12 +14,7 @@ from matplotlib.collections import PolyCollection
 from matplotlib.colors import to_rgba
 from matplotlib.patches import Rectangle
 
-from ..surfaces import (
-    GridSurface,
-    View,
-    floating_perimeter,
-    viewing_case,
-)
+from ..surfaces import GridSurface, View, floating_perimeter, viewing_case
 from ..trace import Recorder, Trace
 from ._common import WIDEST
 

@@ -35,7 +35,7 @@ from matplotlib.colors import to_rgb
 from matplotlib.patches import Patch, Rectangle
 
 from ..surfaces import GridSurface, View, ZBufferComparison, surface_results
-from ._common import WIDEST
+from ._common import WIDEST, pixel_image
 from .horizon import HorizonView, horizon_stepper
 from .perimeter import VISIBLE, PerimeterView, perimeter_stepper
 from .surface_grid import CURRENT, GridFromAbove, check_surface_view, plot_grid
@@ -57,13 +57,7 @@ HOLE, STRUCTURAL, FALSE_HIDDEN, FALSE_VISIBLE = "#e00000", "#9e00c8", "#ff9900",
 
 
 def _screen_axes(axes, image, title: str) -> None:
-    height, width = image.shape[:2]
-    axes.imshow(
-        image,
-        origin="lower",
-        extent=(-0.5, width - 0.5, -0.5, height - 0.5),
-        interpolation="nearest",
-    )
+    pixel_image(axes, image, offset=-0.5)
     axes.set_title(title, fontsize=10)
     axes.set_xticks([])
     axes.set_yticks([])

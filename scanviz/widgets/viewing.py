@@ -20,7 +20,7 @@ from matplotlib.ticker import MaxNLocator
 from ..pipeline.viewing import view_scene
 from ..trace import Recorder
 from ..transform.clip import CLIP_PLANES
-from ._common import html_table, listed, new_figure
+from ._common import DisplaysWidget, html_table, listed, new_figure
 from .stepper import Stepper, figure_widget, refresh_figure
 
 KINDS = ("polygons_transformed", "face_culled", "polygon_clipped")
@@ -73,7 +73,7 @@ def _plane_words(bits: int) -> str:
     return listed(names) + (" plane" if len(names) == 1 else " planes")
 
 
-class ViewingPipelineView:
+class ViewingPipelineView(DisplaysWidget):
     """The scene and the view volume through world, eye, clip, NDC and display space.
 
     Parameters
@@ -466,11 +466,6 @@ class ViewingPipelineView:
             )
             + more
         )
-
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
-
-        display(self.widget)
 
 
 def _cull_table(event, name: str) -> str:

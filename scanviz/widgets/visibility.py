@@ -18,8 +18,9 @@ from dataclasses import MISSING, dataclass, fields
 
 import numpy as np
 
-from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve
-from ._common import WIDEST
+from ..trace import Recorder
+from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve, zbuffer
+from ._common import WIDEST, pixel_image
 
 PALETTE = (  # polygon p is PALETTE[p % 9]; no red in it: red marks a disagreement
     "#0072b2",
@@ -219,12 +220,7 @@ def compare_visibility(
     for k, visibility in enumerate(chosen):
         shown = solve(visibility, polygons, width, height, **options).polygon
         axes = figure.add_subplot(rows, columns, k + 1)
-        axes.imshow(
-            polygon_colors(shown),
-            origin="lower",
-            extent=(0, width, 0, height),
-            interpolation="nearest",
-        )
+        pixel_image(axes, polygon_colors(shown))
         wrong = outline_samples(axes, shown != reference)
         axes.set_title(f"{_label(visibility)}\n{wrong} differ", fontsize=10)
         axes.set_xlim(0, width)
@@ -291,6 +287,26 @@ def outline_samples(
     ]
     axes.add_collection(PatchCollection(squares, fc="none", ec=color, lw=1.2))
     return len(xs)
+
+
+def solve_traced(chosen, polygons, width: int, height: int, kinds=None, **options):
+    """(result, z-buffer result): `polygons` solved by `chosen`, recording the events of `kinds`
+    (None: all), and by the z-buffer, both with `options`."""
+    result = solve(chosen, polygons, width, height, trace=Recorder(kinds=kinds), **options)
+    return result, zbuffer(polygons, width, height, **options)
+
+
+def against_zbuffer(final_axes, zbuffer_axes, ids, zbuffer_ids, *, offset: float = 0.0):
+    """Draw an algorithm's final polygon `ids` and the z-buffer's, outlining where they differ.
+
+    `ids` and `zbuffer_ids` are (H, W) arrays of int64; `offset` is as in
+    `outline_samples`. Returns the (H, W) bool array of the samples that differ.
+    """
+    wrong = ids != zbuffer_ids
+    for axes, shown in ((final_axes, ids), (zbuffer_axes, zbuffer_ids)):
+        pixel_image(axes, polygon_colors(shown), offset=offset)
+        outline_samples(axes, wrong, offset=offset)
+    return wrong
 
 
 def _label(visibility: Visibility) -> str:

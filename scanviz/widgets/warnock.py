@@ -18,12 +18,11 @@ from matplotlib.collections import PolyCollection
 from matplotlib.colors import to_rgb, to_rgba_array
 from matplotlib.patches import Patch, Rectangle
 
-from ..trace import Recorder, Trace
-from ..visibility import solve
+from ..trace import Trace
 from ..visibility.warnock import CASES, Warnock
-from ._common import WIDEST, html_table, listed, new_figure, note_label
+from ._common import WIDEST, html_table, listed, new_figure, note_label, pixel_image
 from .stepper import Stepper, figure_widget, first_steps, refresh_figure
-from .visibility import outline_samples, polygon_colors
+from .visibility import against_zbuffer, polygon_colors, solve_traced
 
 # Dark outlines, apart from the polygons' bright `PALETTE` fills; none red: red marks differences.
 CASE_COLORS = {
@@ -83,11 +82,8 @@ class WarnockView:
         self.step = 0
 
         fig, axes = new_figure(4, width=WIDEST, height=2.9, per_row=4)
-        extent = (0, width, 0, height)
         ax_tree, ax_decided, ax_final, ax_zbuffer = axes
-        ax_tree.imshow(
-            self._final_colors, origin="lower", extent=extent, alpha=0.35, interpolation="nearest"
-        )
+        pixel_image(ax_tree, self._final_colors, alpha=0.35)
         boxes = [
             [(e.x_start, e.y_start), (e.x_end, e.y_start), (e.x_end, e.y_end), (e.x_start, e.y_end)]
             for e in self.events
@@ -102,15 +98,8 @@ class WarnockView:
         ax_tree.add_collection(self.areas)
         self.current = Rectangle((0, 0), 1, 1, fill=False, lw=2.5, ls="--", visible=False)
         ax_tree.add_patch(self.current)
-        self.decided_image = ax_decided.imshow(
-            self._final_colors, origin="lower", extent=extent, interpolation="nearest"
-        )
-        ax_final.imshow(self._final_colors, origin="lower", extent=extent, interpolation="nearest")
-        reference = polygon_colors(zbuffer_result.polygon)
-        ax_zbuffer.imshow(reference, origin="lower", extent=extent, interpolation="nearest")
-        wrong = result.polygon != zbuffer_result.polygon
-        for ax in (ax_final, ax_zbuffer):
-            outline_samples(ax, wrong)
+        self.decided_image = pixel_image(ax_decided, self._final_colors)
+        against_zbuffer(ax_final, ax_zbuffer, result.polygon, zbuffer_result.polygon)
         titles = ("quadtree so far", "decided so far", "Warnock (final)", "z-buffer (red: differs)")
         for ax, title in zip(axes, titles, strict=True):
             ax.set_title(title, fontsize=10)
@@ -247,9 +236,8 @@ def warnock_stepper(polygons, width: int, height: int, *, prune: bool = True, **
     >>> stepper.slider.max == stepper.views[0].result.algorithm.areas
     True
     """
-    recorder = Recorder(kinds=["area_classified"])
-    result = solve(Warnock(prune=prune), polygons, width, height, **options, trace=recorder)
-    reference = solve("zbuffer", polygons, width, height, **options)
+    chosen, kinds = Warnock(prune=prune), ["area_classified"]
+    result, reference = solve_traced(chosen, polygons, width, height, kinds, **options)
     trace, note = first_steps(result.trace, "areas")
     view = WarnockView(trace, result, reference, note=note)
     return Stepper(trace, [view], title="Warnock's area subdivision: one area per step")

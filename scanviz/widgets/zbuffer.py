@@ -15,7 +15,17 @@ from matplotlib.patches import Rectangle
 from ..pipeline import RenderResult, render
 from ..trace import Recorder, Trace
 from ..trace.display import scroll_box
-from ._common import WIDEST, fmt, html_table, new_figure, note_label, parse_pixel, say, status_label
+from ._common import (
+    WIDEST,
+    fmt,
+    html_table,
+    new_figure,
+    note_label,
+    parse_pixel,
+    pixel_image,
+    say,
+    status_label,
+)
 from .stepper import Stepper, figure_widget, refresh_figure
 
 HISTORY_COLUMNS = ("step", "polygon", "incoming z", "stored z", "test")
@@ -124,23 +134,18 @@ class ZBufferView:
         """Depth so far, colour so far and the final image, with the step and pixel markers."""
         height, width = result.depth.shape
         fig, (ax_depth, ax_color, ax_final) = new_figure(3, width=WIDEST, height=3.0)
-        extent = (0, width, 0, height)
         finite = self._z[np.isfinite(self._z)]
         low, high = (finite.min(), finite.max()) if len(finite) else (0.0, 1.0)
-        self.depth_image = ax_depth.imshow(
+        self.depth_image = pixel_image(
+            ax_depth,
             np.full((height, width), np.nan),
-            origin="lower",
-            extent=extent,
             cmap="viridis_r",
             vmin=low,
             vmax=high if high > low else low + 1,
-            interpolation="nearest",
         )
         fig.colorbar(self.depth_image, ax=ax_depth, fraction=0.046, label="z (smaller = nearer)")
-        self.color_image = ax_color.imshow(
-            np.zeros((height, width, 3)), origin="lower", extent=extent, interpolation="nearest"
-        )
-        ax_final.imshow(result.image, origin="lower", extent=extent, interpolation="nearest")
+        self.color_image = pixel_image(ax_color, np.zeros((height, width, 3)))
+        pixel_image(ax_final, result.image)
         for ax, title in zip(
             (ax_depth, ax_color, ax_final), ("depth so far", "color so far", "final"), strict=True
         ):
@@ -513,7 +518,7 @@ class InterpolationView:
         self.trace = trace
         height, width = image.shape[:2]
         fig, (ax,) = new_figure(1, width=4.5, height=4.5)
-        ax.imshow(image, origin="lower", extent=(0, width, 0, height), interpolation="nearest")
+        pixel_image(ax, image)
         ax.set_xlim(0, width)
         ax.set_ylim(0, height)
         (self.outline,) = ax.plot([], [], color="crimson", lw=1.5)
@@ -541,10 +546,7 @@ class InterpolationView:
         return narrate_interpolation(self.trace[step - 1])
 
     def _latest(self, kind: str, step: int):
-        for event in reversed(self.trace[:step]):
-            if event.kind == kind:
-                return event
-        return None
+        return next((e for e in reversed(self.trace[:step]) if e.kind == kind), None)
 
     def show(self, step: int) -> None:
         """Show the polygon, row and span that the first `step` events reached."""
