@@ -21,6 +21,7 @@ matplotlib.use("Agg")
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(HERE / "_ext"))  # scanviz_gallery: the gallery's scraper of steppers
 
 import scanviz  # noqa: E402
 
@@ -115,6 +116,7 @@ source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-n
 myst_enable_extensions = ["dollarmath", "colon_fence", "deflist"]
 myst_heading_anchors = 3
 
+os.environ["SCANVIZ_STILLS"] = "1"  # the executed lessons' widgets also give a still (a GIF)
 nb_execution_mode = os.environ.get("SCANVIZ_DOCS_EXECUTE", "force")
 nb_execution_timeout = 600
 nb_execution_excludepatterns = ["lessons/exercises/*"]  # their answers raise until written
@@ -141,7 +143,7 @@ sphinx_gallery_conf = {
     "download_all_examples": False,
     "remove_config_comments": True,
     "within_subsection_order": "FileNameSortKey",
-    "image_scrapers": ("matplotlib",),
+    "image_scrapers": ("matplotlib", "scanviz_gallery"),
     "matplotlib_animations": False,
 }
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import html
+import os
 from collections.abc import Sequence
 
 import ipywidgets as widgets
@@ -16,15 +17,35 @@ ROW_STYLES = {
 }
 
 
+STILLS = "SCANVIZ_STILLS"
+"""Set (to 1) where nobody will drive the widgets, as the docs build does: a display then also
+carries a still of the widget (HTML), which a page shows in its place."""
+
+
 class DisplaysWidget:
-    """A mixin: displaying the object in a notebook displays its `widget`."""
+    """A mixin: displaying the object in a notebook displays its `widget`.
+
+    With ``SCANVIZ_STILLS=1`` in the environment the display also carries
+    `still()`, an HTML picture of the widget, for pages without a kernel; a
+    live notebook shows the widget either way.
+    """
 
     widget: widgets.Widget
 
     def _ipython_display_(self) -> None:
         from IPython.display import display
 
-        display(self.widget)
+        if not os.environ.get(STILLS):
+            display(self.widget)
+            return
+        bundle = self.widget._repr_mimebundle_()
+        display({**bundle, "text/html": self.still()}, raw=True)
+
+    def still(self) -> str:
+        """An HTML still of the widget: its text, tables and pictures, without the controls."""
+        from .export import static_html
+
+        return static_html(self.widget)
 
 
 def fmt(value: object, digits: int = 4) -> str:

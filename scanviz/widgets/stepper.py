@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import html
 import io
+import os
 import time
 from collections.abc import Iterable
+from pathlib import Path
 from typing import Protocol, runtime_checkable
 
 import ipywidgets as widgets
@@ -20,6 +22,7 @@ import numpy as np
 from ..conventions import sample_offset
 from ..trace import Trace
 from ._common import DisplaysWidget, pixel_image, say
+from .export import MAX_FRAMES, gif_data_uri, save_steps
 from .model import StepModel
 
 
@@ -303,6 +306,37 @@ class Stepper(DisplaysWidget):
             [*heading, controls, self.label, self.narration, *(view.widget for view in self.views)]
         )
         self._show(0)
+
+    def save(
+        self,
+        path: str | os.PathLike,
+        *,
+        steps: Iterable[int] | None = None,
+        max_frames: int = MAX_FRAMES,
+        milliseconds: int | None = None,
+    ) -> list[Path]:
+        """Save the steps as pictures: an animated GIF (``*.gif``) or PNG frames in a folder.
+
+        Each frame is what the stepper shows at one step, from the same trace:
+        the label, the narration and every view's figure. See
+        `scanviz.widgets.export.save_steps` for the parameters.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from scanviz import scan_convert
+        >>> stepper = Stepper(scan_convert([(0, 0), (4, 0), (4, 3)], 5, 3, trace=True).trace)
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     [p.name for p in stepper.save(folder, steps=[0, 8])]
+        ['step_00000.png', 'step_00008.png']
+        """
+        return save_steps(self, path, steps=steps, max_frames=max_frames, milliseconds=milliseconds)
+
+    def still(self) -> str:
+        """A short looping GIF of the steps, in HTML: the still a page without a kernel shows."""
+        if self.slider is None:  # the trace was refused: the message says why
+            return super().still()
+        return f"<img src='{gif_data_uri(self)}' alt='{html.escape(self.label.value)}'>"
 
     def _move(self, delta: int) -> None:
         self.slider.value = min(max(self.slider.value + delta, 0), len(self.model))
