@@ -25,6 +25,7 @@ from .limits import check_memory
 
 IMAGE_FORMATS = {".png": "png", ".jpg": "jpeg", ".jpeg": "jpeg", ".tif": "tiff", ".tiff": "tiff"}
 """Output file extensions (any case) and their formats: PNG by matplotlib, the rest by Pillow."""
+_OUTPUT_HELP = f"image file to write: {', '.join(IMAGE_FORMATS)}"
 # `render --visibility`: the opaque algorithms (names fixed by the issue), then the a-buffer's two.
 VISIBILITY_NAMES = ("zbuffer", "painter", "depth_sort", "bsp", "scanline", "warnock", "abuffer", "flawed")  # fmt: skip
 _EXPORT_BYTES_PER_PIXEL = 40  # float RGBA and 8-bit copies while matplotlib encodes the image
@@ -48,7 +49,13 @@ def _shown(text: str) -> str:
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors (the usage is what --help prints)."""
+    """argparse with one-line errors (the usage is what --help prints); a subcommand's parser
+    takes ``run=function``, what `main` calls with the parsed arguments."""
+
+    def __init__(self, *args, run=None, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        if run is not None:
+            self.set_defaults(run=run)
 
     def error(self, message: str):  # type: ignore[override]
         self.exit(2, f"{self.prog}: error: {escaped(message)} (see --help)\n")
@@ -175,16 +182,10 @@ def _scan(args: argparse.Namespace, trace: bool):
 
     polygon = parse_vertices(args.vertices)
     default_width, default_height = _default_size(polygon)
-    return scan_convert(
-        polygon,
-        default_width if args.width is None else args.width,
-        default_height if args.height is None else args.height,
-        sample=args.sample,
-        rule=args.rule,
-        subpixel_bits=args.subpixel_bits,
-        arithmetic=args.arithmetic,
-        trace=trace,
-    )
+    width = default_width if args.width is None else args.width
+    height = default_height if args.height is None else args.height
+    options = {n: getattr(args, n) for n in ("sample", "rule", "subpixel_bits", "arithmetic")}
+    return scan_convert(polygon, width, height, trace=trace, **options)
 
 
 def _cmd_trace(args: argparse.Namespace) -> None:
@@ -289,26 +290,18 @@ def _load(source: str, width: int, height: int):
     return load_scene(source)
 
 
+_RENDER_OPTIONS = ("shading", "visibility", "sample", "perspective_correct", "cull", "edges", "mask", "weights", "expansion")  # fmt: skip
+"""The options of 'render' that are `scanviz.pipeline.render`'s keyword arguments of the same name."""
+
+
 def _cmd_render(args: argparse.Namespace) -> None:
     from .pipeline import render
 
     if args.output is not None:
         _image_format(args.output)  # refuse a bad name before the work
     scene = _load(args.scene, args.width, args.height)
-    result = render(
-        scene,
-        args.width,
-        args.height,
-        shading=args.shading,
-        visibility=args.visibility,
-        sample=args.sample,
-        perspective_correct=args.perspective_correct,
-        cull=args.cull,
-        edges=args.edges,
-        mask=args.mask,
-        weights=args.weights,
-        expansion=args.expansion,
-    )
+    options = {name: getattr(args, name) for name in _RENDER_OPTIONS}
+    result = render(scene, args.width, args.height, **options)
     if args.plan:
         print(result.plan)
     if args.output is not None:
@@ -400,10 +393,8 @@ def _cmd_surface(args: argparse.Namespace) -> None:
         scene = phase_scene(phase, view, w, h, args.ring_steps, args.marker)
     if args.algorithm == "fha":
         result = floating_horizon(surface, view, w, h, family=args.family)
-        image, summary = (
-            result.image,
-            f"{result.stats.curves} curves, {result.stats.segments} parts",
-        )
+        image = result.image
+        summary = f"{result.stats.curves} curves, {result.stats.segments} parts"
     elif args.antialias != "none":
         image, summary = _antialiased_surface(surface, view, w, h, args)
     elif args.algorithm == "fpa":
@@ -446,55 +437,49 @@ def _antialiased_surface(surface, view, w: int, h: int, args: argparse.Namespace
     return smooth.image, f"{args.antialias}: {summary}"
 
 
-def _add_surface_options(surface: argparse.ArgumentParser) -> None:
-    surface.add_argument(
+def _add_surface_command(commands) -> None:
+    summary = "a grid surface by the FPA, the floating horizon or the z-buffer"
+    add = commands.add_parser("surface", help=summary, run=_cmd_surface).add_argument
+    add(
         "surface",
         help="gaussian, polynomial, rogers, random, a database file (Table 2-1), or "
         f"{PHASE_SURFACE}: |F| of three poles and two zeros, coloured by arg F through the colour ring",
     )
-    surface.add_argument("-o", "--output", help=f"image file: {', '.join(IMAGE_FORMATS)}")
-    surface.add_argument("--algorithm", choices=SURFACE_ALGORITHMS, default="fpa")
-    surface.add_argument(
+    add("-o", "--output", help=f"image file: {', '.join(IMAGE_FORMATS)}")
+    add("--algorithm", choices=SURFACE_ALGORITHMS, default="fpa")
+    add(
         "--mode",
         choices=("lines", "surface"),
         default="lines",
         help="fpa: hidden lines or surfaces",
     )
-    surface.add_argument("--family", choices=("x", "y"), default="x", help="fha: which curves")
-    surface.add_argument(
+    add("--family", choices=("x", "y"), default="x", help="fha: which curves")
+    add(
         "--antialias",
         choices=("dislop", "post", "none"),
         default="none",
         help="fpa (Wang ch. 5): lines by DISLOP_L or the line LUT; surface: the silhouette by area",
     )
-    surface.add_argument(
-        "--shading", choices=("flat", "gouraud", "phong", "gooch"), default="phong"
-    )
-    surface.add_argument(
-        "--points", type=_at_least_one, metavar="N", help="built-ins: points per side"
-    )
-    surface.add_argument(
-        "--viewpoint", type=_vector3, metavar="X,Y,Z", help="default: (6, 8, 3) scaled"
-    )
-    surface.add_argument(
-        "--direction", type=_vector3, metavar="DX,DY,DZ", help="default: towards the centre"
-    )
-    surface.add_argument("--parallel", action="store_true", help="parallel projection")
-    surface.add_argument(
+    add("--shading", choices=("flat", "gouraud", "phong", "gooch"), default="phong")
+    add("--points", type=_at_least_one, metavar="N", help="built-ins: points per side")
+    add("--viewpoint", type=_vector3, metavar="X,Y,Z", help="default: (6, 8, 3) scaled")
+    add("--direction", type=_vector3, metavar="DX,DY,DZ", help="default: towards the centre")
+    add("--parallel", action="store_true", help="parallel projection")
+    add(
         "--ring-steps",
         type=_at_least_one,
         default=64,
         metavar="S",
         help=f"{PHASE_SURFACE}: a ring of 3 S colours (64)",
     )
-    surface.add_argument(
+    add(
         "--marker",
         type=int,
         metavar="K",
         help=f"{PHASE_SURFACE}: ring entry K shown white (the colour replacement)",
     )
-    surface.add_argument("--width", type=_at_least_one, default=400, metavar="N")
-    surface.add_argument("--height", type=_at_least_one, default=400, metavar="N")
+    add("--width", type=_at_least_one, default=400, metavar="N")
+    add("--height", type=_at_least_one, default=400, metavar="N")
 
 
 def _cmd_conformance(args: argparse.Namespace) -> int:
@@ -606,18 +591,12 @@ def _cmd_grade(args: argparse.Namespace) -> None:
         raise ValueError("give one SUBMISSIONS_DIR (or: grade merge PART_DIR... -o OUT_DIR)")
     if args.key is None:
         raise ValueError("the following arguments are required: --key")
+    from .exercises import report
     from .exercises.grading import grade_submissions
     from .exercises.key import load_key
-    from .exercises.report import (
-        folder_names,
-        grade_rows,
-        output_folder,
-        summary_line,
-        write_reports,
-    )
 
     submissions = args.submissions[0]
-    out_dir = output_folder(args.out_dir)
+    out_dir = report.output_folder(args.out_dir)
     if out_dir.resolve().is_relative_to(Path(submissions).resolve()):
         raise ValueError("-o/--output must be a folder outside SUBMISSIONS_DIR")
     key = load_key(args.key)
@@ -630,8 +609,8 @@ def _cmd_grade(args: argparse.Namespace) -> None:
         shard=args.shard,
         jail="none" if args.no_jail else args.jail,
     )
-    write_reports(grades, key, out_dir)
-    folders = folder_names(s.student for s in grades)
+    report.write_reports(grades, key, out_dir)
+    folders = report.folder_names(s.student for s in grades)
     rows = sum(len(s.grades) for s in grades)
     print(f"{out_dir / 'grades.csv'}: {rows} rows (one per student and exercise)")
     print(
@@ -644,7 +623,7 @@ def _cmd_grade(args: argparse.Namespace) -> None:
     print(f"{out_dir / 'summary.txt'}, {out_dir / 'summary.html'}: the class summary")
     if args.shard is not None:
         print(f"part {args.shard[0]} of {args.shard[1]}: join the parts with `grade merge`")
-    print(summary_line(grade_rows(grades)))
+    print(report.summary_line(report.grade_rows(grades)))
 
 
 def _cmd_grade_merge(args: argparse.Namespace) -> None:
@@ -693,14 +672,14 @@ def _add_exercise_commands(commands) -> None:
         required=True,
         metavar="list|release|key|gradescope|prairielearn|autograde",
     )
-    listing = what.add_parser("list", help="number, id, stage, kind, points and title of each")
-    listing.set_defaults(run=_cmd_exercises_list)
-    release = what.add_parser("release", help="write the student notebooks into OUT_DIR")
+    summary = "number, id, stage, kind, points and title of each"
+    what.add_parser("list", help=summary, run=_cmd_exercises_list)
+    summary = "write the student notebooks into OUT_DIR"
+    release = what.add_parser("release", help=summary, run=_cmd_exercises_release)
     release.add_argument("out_dir", metavar="OUT_DIR")
     release.add_argument(
         "--with-solutions", action="store_true", help="the teacher's solved copies instead"
     )
-    release.set_defaults(run=_cmd_exercises_release)
     _add_key_commands(what)
     _add_platform_commands(what)
     _add_grading_commands(commands)
@@ -711,195 +690,126 @@ def _add_key_commands(what) -> None:
     key = what.add_parser("key", help="course keys: key new KEY.toml").add_subparsers(
         dest="key_command", required=True, metavar="new"
     )
-    new = key.add_parser("new", help="write a course key with a fresh random secret")
+    summary = "write a course key with a fresh random secret"
+    new = key.add_parser("new", help=summary, run=_cmd_exercises_key_new)
     new.add_argument("key", metavar="KEY.toml", help="the file to write (never overwritten)")
-    new.add_argument(
-        "--exercises",
-        type=_exercise_ids,
-        metavar="ID,ID,...",
-        help="the assignment's exercises (default: all of them)",
-    )
-    new.set_defaults(run=_cmd_exercises_key_new)
+    _add_exercises_option(new, "the assignment's exercises (default: all of them)")
+
+
+def _add_exercises_option(parser: argparse.ArgumentParser, which: str) -> None:
+    parser.add_argument("--exercises", type=_exercise_ids, metavar="ID,ID,...", help=which)
+
+
+def _add_key_option(parser: argparse.ArgumentParser, required: bool = True) -> None:
+    parser.add_argument("--key", required=required, metavar="KEY.toml", help="the course key")
 
 
 def _add_platform_commands(what) -> None:
     """exercises gradescope|prairielearn|autograde: a course key on a grading platform."""
-    gradescope = what.add_parser(
-        "gradescope", help="build a Gradescope autograder zip for a course key"
-    )
+    summary = "build a Gradescope autograder zip for a course key"
+    gradescope = what.add_parser("gradescope", help=summary, run=_cmd_exercises_gradescope)
     gradescope.add_argument("zip", metavar="AUTOGRADER.zip")
-    gradescope.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
-    gradescope.set_defaults(run=_cmd_exercises_gradescope)
-    prairielearn = what.add_parser(
-        "prairielearn", help="write the tests/ files of PrairieLearn's external grader"
-    )
+    _add_key_option(gradescope)
+    summary = "write the tests/ files of PrairieLearn's external grader"
+    prairielearn = what.add_parser("prairielearn", help=summary, run=_cmd_exercises_prairielearn)
     prairielearn.add_argument("out_dir", metavar="OUT_DIR")
-    prairielearn.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
-    prairielearn.set_defaults(run=_cmd_exercises_prairielearn)
-    autograde = what.add_parser(
-        "autograde", help="grade one submission into a platform's results.json (the entrypoint)"
-    )
+    _add_key_option(prairielearn)
+    summary = "grade one submission into a platform's results.json (the entrypoint)"
+    autograde = what.add_parser("autograde", help=summary, run=_cmd_exercises_autograde)
     autograde.add_argument("submission", metavar="SUBMISSION", help="a notebook or a folder")
-    autograde.add_argument("--key", required=True, metavar="KEY.toml", help="the course key")
+    _add_key_option(autograde)
     autograde.add_argument("--platform", required=True, choices=["gradescope", "prairielearn"])
     autograde.add_argument("-o", "--output", dest="out", required=True, metavar="RESULTS.json")
     autograde.add_argument("--jail", default="auto", choices=["auto", "bwrap", "user", "none"])
-    autograde.set_defaults(run=_cmd_exercises_autograde)
 
 
 def _add_grading_commands(commands) -> None:
     """check (a student's notebook) and grade (a class's folder)."""
-    check = commands.add_parser(
-        "check", help="a student's check: the public cases of a notebook's answers"
-    )
+    summary = "a student's check: the public cases of a notebook's answers"
+    check = commands.add_parser("check", help=summary, run=_cmd_check)
     check.add_argument("notebook", metavar="NOTEBOOK")
-    check.set_defaults(run=_cmd_check)
-    grade = commands.add_parser(
-        "grade",
-        help="grade a folder of notebooks (one per student); grade merge PART_DIR...: join shards",
-    )
-    grade.add_argument(
+    summary = "grade a folder of notebooks (one per student); grade merge PART_DIR...: join shards"
+    grade = commands.add_parser("grade", help=summary, run=_cmd_grade)
+    add = grade.add_argument
+    add(
         "submissions",
         nargs="+",
         metavar="SUBMISSIONS_DIR",
         help="the class's folder; or: merge PART_DIR... (folders graded with --shard)",
     )
-    grade.add_argument("--key", metavar="KEY.toml", help="the course key")
-    grade.add_argument("-o", "--output", dest="out_dir", required=True, metavar="OUT_DIR")
-    grade.add_argument(
-        "--jobs", type=_at_least_one, default=1, metavar="N", help="submissions graded at once"
+    _add_key_option(grade, required=False)
+    add("-o", "--output", dest="out_dir", required=True, metavar="OUT_DIR")
+    add("--jobs", type=_at_least_one, default=1, metavar="N", help="submissions graded at once")
+    _add_exercises_option(
+        grade, "grade only these exercises of the key (default: all of the key's)"
     )
-    grade.add_argument(
-        "--exercises",
-        type=_exercise_ids,
-        metavar="ID,ID,...",
-        help="grade only these exercises of the key (default: all of the key's)",
-    )
-    grade.add_argument(
-        "--shard", type=_shard, metavar="K/N", help="grade part K of N of the students (by id)"
-    )
-    grade.add_argument(
+    add("--shard", type=_shard, metavar="K/N", help="grade part K of N of the students (by id)")
+    add(
         "--jail",
         default="bwrap",
         choices=["bwrap", "user", "auto"],
         help="where answers run: bubblewrap (default), the user nobody (root only), "
         "auto: the first that starts",
     )
-    grade.add_argument(
+    add(
         "--no-jail",
         action="store_true",
         help="run answers without a jail: only for submissions you trust",
     )
-    grade.set_defaults(run=_cmd_grade)
 
 
-def _add_render_options(render: argparse.ArgumentParser) -> None:
-    render.add_argument(
-        "scene", help="SCENE.json, MODEL.obj (framed automatically) or builtin:NAME"
-    )
-    render.add_argument("-o", "--output", help=f"image file to write: {', '.join(IMAGE_FORMATS)}")
-    render.add_argument("--width", type=_at_least_one, default=512, help="pixels, >= 1")
-    render.add_argument("--height", type=_at_least_one, default=512, help="pixels, >= 1")
-    render.add_argument(
-        "--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch", "fast_phong"]
-    )
-    render.add_argument("--visibility", default="zbuffer", choices=VISIBILITY_NAMES)
-    render.add_argument("--edges", action="store_true", help="draw feature edges")
-    render.add_argument("--mask", default="8x8", choices=["4x4", "8x4", "8x8"], help="a-buffer")
-    render.add_argument("--weights", default="area", choices=["area", "mask"], help="a-buffer")
-    render.add_argument(
+def _add_render_command(commands) -> None:
+    summary = "render a scene (JSON file, OBJ model or builtin:NAME) to an image"
+    add = commands.add_parser("render", help=summary, run=_cmd_render).add_argument
+    add("scene", help="SCENE.json, MODEL.obj (framed automatically) or builtin:NAME")
+    add("-o", "--output", help=_OUTPUT_HELP)
+    add("--width", type=_at_least_one, default=512, help="pixels, >= 1")
+    add("--height", type=_at_least_one, default=512, help="pixels, >= 1")
+    add("--shading", default="phong", choices=["flat", "gouraud", "phong", "gooch", "fast_phong"])
+    add("--visibility", default="zbuffer", choices=VISIBILITY_NAMES)
+    add("--edges", action="store_true", help="draw feature edges")
+    add("--mask", default="8x8", choices=["4x4", "8x4", "8x8"], help="a-buffer")
+    add("--weights", default="area", choices=["area", "mask"], help="a-buffer")
+    add(
         "--expansion",
         default="vertex",
         choices=["vertex", "centroid"],
         help="fast_phong: the Taylor expansion point of each triangle",
     )
-    render.add_argument(
+    add(
         "--perspective-correct",
         action=argparse.BooleanOptionalAction,
         default=True,
         help="interpolate with 1/w (default) or affinely in screen space",
     )
-    render.add_argument(
+    add(
         "--affine",
         dest="perspective_correct",
         action="store_false",
         help="= --no-perspective-correct",
     )
-    render.add_argument(
+    add(
         "--cull",
         action=argparse.BooleanOptionalAction,
         default=None,
         help="cull back faces (default: the scene's own, closed meshes only)",
     )
-    render.add_argument("--sample", default="corner", choices=["corner", "center"])
-    render.add_argument("--plan", action="store_true", help="print which stages run and why")
+    add("--sample", default="corner", choices=["corner", "center"])
+    add("--plan", action="store_true", help="print which stages run and why")
 
 
-def _add_suite_bench_options(bench: argparse.ArgumentParser) -> None:
-    bench.add_argument(
-        "--sizes", type=_counts, metavar="N,N,...", help="visibility: random triangles per scene"
-    )
-    count = {"type": _at_least_one, "metavar": "N"}
-    bench.add_argument("--width", **count, help="visibility: raster width (256)")
-    bench.add_argument("--height", **count, help="visibility: raster height (256)")
-    bench.add_argument(
-        "--repeat", **count, help="visibility, surfaces, shading: runs per scene (3)"
-    )
-    bench.add_argument(
-        "--algorithms",
-        type=_names,
-        metavar="NAME,NAME,...",
-        help="visibility: which algorithms besides the z-buffer (default: all); "
-        "surfaces: which of fha, fpa-lines, fpa-flat, fpa-phong, zbuf-flat, zbuf-phong",
-    )
-    bench.add_argument(
-        "--budget", type=_seconds, metavar="SECONDS", help="visibility: time per algorithm (30)"
-    )
-    bench.add_argument(
-        "--grids", type=_counts, metavar="N,N,...", help="surfaces: grid points per side (10..200)"
-    )
-    bench.add_argument(
-        "--images", type=_counts, metavar="N,N,...", help="surfaces: image sides (100..600)"
-    )
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="python -m scanviz", description=__doc__.splitlines()[0])
-    commands = parser.add_subparsers(dest="command", required=True)
-    trace = commands.add_parser(
-        "trace", help="print the ET/AET/spans table of a polygon (or --json)"
-    )
-    _add_scan_options(trace)
-    trace.add_argument("--json", action="store_true", help='print {"events": [...]} instead')
-    trace.set_defaults(run=_cmd_trace)
-    fill = commands.add_parser("fill", help="scan-convert a polygon into a PNG")
-    _add_scan_options(fill)
-    fill.add_argument(
-        "-o", "--output", required=True, help=f"image file to write: {', '.join(IMAGE_FORMATS)}"
-    )
-    fill.add_argument(
-        "--scale", type=_at_least_one, default=1, help="magnify each pixel to N x N in the image"
-    )
-    fill.set_defaults(run=_cmd_fill)
-    render = commands.add_parser(
-        "render", help="render a scene (JSON file, OBJ model or builtin:NAME) to an image"
-    )
-    _add_render_options(render)
-    render.set_defaults(run=_cmd_render)
-    surface = commands.add_parser(
-        "surface", help="a grid surface by the FPA, the floating horizon or the z-buffer"
-    )
-    _add_surface_options(surface)
-    surface.set_defaults(run=_cmd_surface)
-    bench = commands.add_parser("bench", help="benchmarks: run time against peers and error")
-    bench.add_argument(
+def _add_bench_command(commands) -> None:
+    """bench: the suite, 'bench all' and 'bench compare' options, then the suites' own."""
+    summary = "benchmarks: run time against peers and error"
+    add = commands.add_parser("bench", help=summary, run=_cmd_bench).add_argument
+    add(
         "suite",
         choices=(*SUITES, "all", "compare"),
         help="a suite; all: every suite into one report; compare A.md B.md: two reports' times",
     )
-    bench.add_argument("reports", nargs="*", metavar="REPORT.md", help="compare: the two reports")
-    bench.add_argument("--quick", action="store_true", help="smaller scenes, for a smoke test")
-    bench.add_argument(
+    add("reports", nargs="*", metavar="REPORT.md", help="compare: the two reports")
+    add("--quick", action="store_true", help="smaller scenes, for a smoke test")
+    add(
         "--plot",
         metavar="PATH",
         help="coverage: error-vs-time plot file (default coverage.png); "
@@ -907,26 +817,49 @@ def build_parser() -> argparse.ArgumentParser:
         "antialias: error-vs-time, scaling: time-vs-triangles and -pixels plot file "
         "(default: none)",
     )
-    bench.add_argument(
-        "--report", metavar="PATH.md", help="all: the Markdown report (default bench-report.md)"
+    add("--report", metavar="PATH.md", help="all: the Markdown report (default bench-report.md)")
+    add("--plot-dir", metavar="DIR", help="all: save each suite's plot as DIR/SUITE.png")
+    add("--sizes", type=_counts, metavar="N,N,...", help="visibility: random triangles per scene")
+    count = {"type": _at_least_one, "metavar": "N"}
+    add("--width", **count, help="visibility: raster width (256)")
+    add("--height", **count, help="visibility: raster height (256)")
+    add("--repeat", **count, help="visibility, surfaces, shading: runs per scene (3)")
+    add(
+        "--algorithms",
+        type=_names,
+        metavar="NAME,NAME,...",
+        help="visibility: which algorithms besides the z-buffer (default: all); "
+        "surfaces: which of fha, fpa-lines, fpa-flat, fpa-phong, zbuf-flat, zbuf-phong",
     )
-    bench.add_argument(
-        "--plot-dir", metavar="DIR", help="all: save each suite's plot as DIR/SUITE.png"
+    add("--budget", type=_seconds, metavar="SECONDS", help="visibility: time per algorithm (30)")
+    add("--grids", type=_counts, metavar="N,N,...", help="surfaces: grid points per side (10..200)")
+    add("--images", type=_counts, metavar="N,N,...", help="surfaces: image sides (100..600)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="python -m scanviz", description=__doc__.splitlines()[0])
+    commands = parser.add_subparsers(dest="command", required=True)
+    summary = "print the ET/AET/spans table of a polygon (or --json)"
+    trace = commands.add_parser("trace", help=summary, run=_cmd_trace)
+    _add_scan_options(trace)
+    trace.add_argument("--json", action="store_true", help='print {"events": [...]} instead')
+    fill = commands.add_parser("fill", help="scan-convert a polygon into a PNG", run=_cmd_fill)
+    _add_scan_options(fill)
+    fill.add_argument("-o", "--output", required=True, help=_OUTPUT_HELP)
+    fill.add_argument(
+        "--scale", type=_at_least_one, default=1, help="magnify each pixel to N x N in the image"
     )
-    _add_suite_bench_options(bench)
-    bench.set_defaults(run=_cmd_bench)
-    conformance = commands.add_parser(
-        "conformance", help="the stress suite: PASS/FAIL per category"
-    )
+    _add_render_command(commands)
+    _add_surface_command(commands)
+    _add_bench_command(commands)
+    summary = "the stress suite: PASS/FAIL per category"
+    conformance = commands.add_parser("conformance", help=summary, run=_cmd_conformance)
     conformance.add_argument(
         "--fuzz", type=_integer, default=0, metavar="N", help="N more fuzz inputs"
     )
     conformance.add_argument("--seed", type=_integer, default=0, metavar="S", help="fuzz seed")
-    conformance.set_defaults(run=_cmd_conformance)
-    warmup = commands.add_parser(
-        "warmup", help="compile every numba kernel now (make lab and make test do it once)"
-    )
-    warmup.set_defaults(run=_cmd_warmup)
+    summary = "compile every numba kernel now (make lab and make test do it once)"
+    commands.add_parser("warmup", help=summary, run=_cmd_warmup)
     _add_exercise_commands(commands)
     return parser
 

@@ -219,8 +219,7 @@ def check_scene_file(args: dict):
             path.write_bytes(args["data"])
         elif args["kind"] == "directory":
             path.mkdir()
-        source = {"missing": str(path), "file": str(path), "directory": str(path)}[args["kind"]]
-        return _render_checked(load_scene(source), args["mode"])
+        return _render_checked(load_scene(str(path)), args["mode"])  # "missing": no file
 
 
 def check_obj(args: dict):

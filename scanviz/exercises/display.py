@@ -19,14 +19,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..trace.display import Formatter, fields_line, mask_layout, place, scroll_box
-from .compare import (
-    MISSING,
-    Difference,
-    RasterDifference,
-    aligned,
-    first_difference,
-    first_places,
-)
+from .compare import MISSING, Difference, RasterDifference, aligned, first_difference, first_places
 from .jail.wire import Opaque, record_fields, record_name
 from .verdict import NO_MATCH, Verdict
 
@@ -242,10 +235,7 @@ def raster_figure(raster: RasterDifference, inputs: Mapping | None = None):
         grid_x, grid_y = np.meshgrid(np.arange(width) + offset, np.arange(height) + offset)
         axes.plot(grid_x.ravel(), grid_y.ravel(), ".", color="#555", markersize=2, zorder=3)
     closed, open_ = case_outlines(inputs)
-    for points in closed:
-        loop = np.vstack([points, points[:1]])
-        axes.plot(loop[:, 0], loop[:, 1], color="black", linewidth=1.6, zorder=4, gid="outline")
-    for points in open_:
+    for points in [np.vstack([loop, loop[:1]]) for loop in closed] + open_:  # loops drawn closed
         axes.plot(points[:, 0], points[:, 1], color="black", linewidth=1.6, zorder=4, gid="outline")
     axes.set_xlim(0, width)
     axes.set_ylim(0, height)
@@ -318,11 +308,9 @@ def verdict_html(verdict: Verdict, yours=None, reference=None, rtol: float = 0.0
             f"<div>first difference at event {t.index + 1} of {t.length} — "
             f"<b>{html.escape(t.kind + where)}</b> ({matched})</div>"
         )
-        pair = (
-            first_diverging(yours.trace, reference.trace, rtol)
-            if yours is not None and reference is not None
-            else None
-        )
+        pair = None
+        if yours is not None and reference is not None:
+            pair = first_diverging(yours.trace, reference.trace, rtol)
         if pair is not None:
             parts.append(comparison_html(pair[0], pair[1], rtol))
         else:
@@ -333,20 +321,11 @@ def verdict_html(verdict: Verdict, yours=None, reference=None, rtol: float = 0.0
                 f"<div>it also differs at: {html.escape(places)} ({len(t.later)} places)</div>"
             )
     if verdict.calls_total:
-        if verdict.wrong_calls:
-            places = first_places(verdict.wrong_calls, " …")
-            parts.append(
-                f"<div>with the reference state fed in at every call, yours differs at "
-                f"{len(verdict.wrong_calls)} of {verdict.calls_total}: {html.escape(places)}</div>"
-            )
-            if verdict.first_call is not None:
-                subject = "the first such call's output"
-                parts.append(difference_html(verdict.first_call, subject, rtol))
-        else:
-            parts.append(
-                f"<div>with the reference state fed in, all {verdict.calls_total} calls agree: "
-                "the difference comes from an earlier wrong state</div>"
-            )
+        places = f": {first_places(verdict.wrong_calls, ' …')}" if verdict.wrong_calls else ""
+        parts.append(f"<div>{html.escape(verdict.calls_summary + places)}</div>")
+        if verdict.wrong_calls and verdict.first_call is not None:
+            subject = "the first such call's output"
+            parts.append(difference_html(verdict.first_call, subject, rtol))
     if verdict.result is not None:
         parts.append(difference_html(verdict.result, "the result", rtol))
     if verdict.raster is not None:

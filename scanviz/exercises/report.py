@@ -200,10 +200,12 @@ def _markdown_text(text: str) -> str:
 
 
 def _overview_markdown(student: StudentGrade) -> str:
-    return "\n".join(
+    """The student's total, then a line per exercise."""
+    lines = [
         f"- {g.exercise}: {points(g.score)} of {points(g.max_score)} ({g.status})"
         for g in student.grades
-    )
+    ]
+    return f"{_markdown_text(_student_headline(student))}\n\n" + "\n".join(lines)
 
 
 def feedback_markdown(student: StudentGrade, reveal: bool) -> str:
@@ -212,10 +214,7 @@ def feedback_markdown(student: StudentGrade, reveal: bool) -> str:
     sections = [
         _exercise_markdown(g, titles.get(g.exercise, g.exercise), reveal) for g in student.grades
     ]
-    head = (
-        f"# Feedback for {_markdown_text(student.student)}\n\n"
-        f"{_markdown_text(_student_headline(student))}\n\n{_overview_markdown(student)}"
-    )
+    head = f"# Feedback for {_markdown_text(student.student)}\n\n{_overview_markdown(student)}"
     return "\n\n".join([head, *sections]) + "\n"
 
 
@@ -300,11 +299,10 @@ def gradescope_results(student: StudentGrade, reveal: bool, execution_time: floa
 
     `execution_time` is the seconds grading took, 0 when unknown.
     """
-    output = f"{_markdown_text(_student_headline(student))}\n\n{_overview_markdown(student)}"
     return {
         "score": student.score,
         "execution_time": execution_time,
-        "output": output,
+        "output": _overview_markdown(student),
         "output_format": "md",
         "tests": [test for g in student.grades for test in gradescope_tests(g, reveal)],
     }
@@ -528,16 +526,10 @@ def write_grades_csv(rows: list[GradeRow], path: Path) -> None:
     with open(path, "w", newline="", encoding="utf-8") as file:
         writer = csv.writer(file)
         writer.writerow(CSV_COLUMNS)
-        for row in rows:
-            writer.writerow(
-                [
-                    csv_cell(row.student),
-                    row.exercise,
-                    points(row.score),
-                    points(row.max_score),
-                    row.status,
-                ]
-            )
+        writer.writerows(
+            (csv_cell(r.student), r.exercise, points(r.score), points(r.max_score), r.status)
+            for r in rows
+        )
 
 
 def output_folder(out_dir: str | Path) -> Path:

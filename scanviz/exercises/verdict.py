@@ -61,6 +61,21 @@ class Verdict:
             return "step output"
         return "result"
 
+    @property
+    def calls_summary(self) -> str:
+        """How the forced calls went, without their places ('' when the exercise forces none)."""
+        if self.wrong_calls:
+            return (
+                "with the reference state fed in at every call, yours differs at "
+                f"{len(self.wrong_calls)} of {self.calls_total}"
+            )
+        if not self.calls_total:
+            return ""
+        return (
+            f"with the reference state fed in, all {self.calls_total} calls agree: "
+            "the difference comes from an earlier wrong state"
+        )
+
     def summary(self, reveal: bool = True) -> str:
         """One line: the case, and where it first differs or what it raised."""
         first = self.describe(reveal).splitlines()
@@ -77,9 +92,7 @@ class Verdict:
         if self.hidden and not reveal and not self.passed:
             return _redacted(self)
         name = (
-            self.case.label
-            if (reveal or not self.hidden)
-            else (self.case.category or "hidden case")
+            self.case.label if reveal or not self.hidden else (self.case.category or "hidden case")
         )
         mark = "passed" if self.passed else "FAILED"
         lines = [f"{'hidden' if self.hidden else 'public'} case {name!r}: {mark}"]
@@ -90,19 +103,10 @@ class Verdict:
         if self.trace is not None:
             lines.extend("  " + line for line in self.trace.describe().splitlines())
         if self.calls_total:
-            if self.wrong_calls:
-                places = first_places(self.wrong_calls)
-                lines.append(
-                    f"  with the reference state fed in at every call, yours differs at "
-                    f"{len(self.wrong_calls)} of {self.calls_total}: {places}"
-                )
-                if self.first_call is not None:
-                    lines.append(f"    first: {self.first_call.describe()}")
-            else:
-                lines.append(
-                    f"  with the reference state fed in, all {self.calls_total} calls agree: "
-                    "the difference comes from an earlier wrong state"
-                )
+            places = f": {first_places(self.wrong_calls)}" if self.wrong_calls else ""
+            lines.append(f"  {self.calls_summary}{places}")
+            if self.wrong_calls and self.first_call is not None:
+                lines.append(f"    first: {self.first_call.describe()}")
         if self.result is not None:
             lines.append(f"  result: {self.result.describe()}")
         if self.raster is not None:
@@ -150,10 +154,7 @@ def _redacted(verdict: Verdict) -> str:
             f" -- {verdict.trace.kind}{place}"
         )
     if verdict.wrong_calls:
-        lines.append(
-            f"  with the reference state fed in at every call, yours differs at "
-            f"{len(verdict.wrong_calls)} of {verdict.calls_total}"
-        )
+        lines.append(f"  {verdict.calls_summary}")
     if verdict.result is not None:
         lines.append("  the result differs from the reference's")
     if verdict.raster is not None:

@@ -132,11 +132,16 @@ def _boolean(path: str, value: object) -> bool:
     return value
 
 
+def _each(path: str, value: object, read: Callable, *args: object) -> tuple:
+    """A JSON array read entry by entry: ``read(f"{path}[i]", entry, *args)``."""
+    return tuple(read(f"{path}[{i}]", item, *args) for i, item in enumerate(_array(path, value)))
+
+
 def _vector(path: str, value: object, size: int) -> tuple[float, ...]:
     items = _array(path, value)
     if len(items) != size:
         raise ValueError(f"{path} must have {size} numbers; got {len(items)}")
-    return tuple(_number(f"{path}[{i}]", item) for i, item in enumerate(items))
+    return _each(path, items, _number)
 
 
 def _plain_integer(x: object) -> bool:
@@ -285,7 +290,7 @@ def _step(path: str, value: object) -> np.ndarray:
         rows = _array(path, argument)
         if len(rows) != 4:
             raise ValueError(f"{path} must have 4 rows; got {len(rows)}")
-        matrix = np.array([_vector(f"{path}[{i}]", row, 4) for i, row in enumerate(rows)])
+        matrix = np.array(_each(path, rows, _vector, 4))
         try:  # the model's rules: affine, bounded, an invertible 3x3 block
             check_modeling_matrix(matrix)
         except ValueError as error:
@@ -295,7 +300,7 @@ def _step(path: str, value: object) -> np.ndarray:
 
 def _transform(path: str, value: object) -> np.ndarray:
     """world_from_model = T_n @ ... @ T_1: the steps in order, step 1 applied first."""
-    steps = [_step(f"{path}[{i}]", step) for i, step in enumerate(_array(path, value))]
+    steps = _each(path, value, _step)
     if not steps:
         return np.eye(4)
     with np.errstate(all="ignore"):  # an overflowing product is caught just below
@@ -326,10 +331,7 @@ def _inline_mesh(path: str, fields: Mapping, palette: Mapping[str, Material]) ->
         if key in fields:
             kwargs[key] = _items(f"{path}.{key}", fields[key], _integer)
     if "materials" in fields:
-        items = _array(f"{path}.materials", fields["materials"])
-        kwargs["materials"] = tuple(
-            _material(f"{path}.materials[{i}]", m, palette) for i, m in enumerate(items)
-        )
+        kwargs["materials"] = _each(f"{path}.materials", fields["materials"], _material, palette)
     return _build(path, Mesh, **kwargs)
 
 
@@ -439,13 +441,8 @@ def scene_from_dict(data: Mapping, base_dir: str | os.PathLike | None = None) ->
             palette[name] = _material(f"materials.{name}", value, {})
     kwargs: dict[str, object] = {
         "camera": _camera("camera", fields["camera"]),
-        "lights": tuple(
-            _light(f"lights[{i}]", v) for i, v in enumerate(_array("lights", fields["lights"]))
-        ),
-        "objects": tuple(
-            _scene_object(f"objects[{i}]", v, palette, base)
-            for i, v in enumerate(_array("objects", fields["objects"]))
-        ),
+        "lights": _each("lights", fields["lights"], _light),
+        "objects": _each("objects", fields["objects"], _scene_object, palette, base),
     }
     for key in ("ambient", "background"):
         if key in fields:
@@ -577,7 +574,8 @@ def scene_to_dict(scene: Scene) -> dict:
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"'scene' must be a scanviz.scene.Scene; got {type(scene).__name__}")
-    camera = scene.camera
+    camera = {k: list(getattr(scene.camera, k)) for k in ("eye", "look_at", "up", "window")}
+    camera |= {k: getattr(scene.camera, k) for k in ("near", "far", "projection")}
     objects = []
     for obj in scene.objects:
         data: dict[str, object] = {"name": obj.name} if obj.name else {}
@@ -594,15 +592,7 @@ def scene_to_dict(scene: Scene) -> dict:
     return {
         "version": FORMAT_VERSION,
         "name": scene.name,
-        "camera": {
-            "eye": list(camera.eye),
-            "look_at": list(camera.look_at),
-            "up": list(camera.up),
-            "window": list(camera.window),
-            "near": camera.near,
-            "far": camera.far,
-            "projection": camera.projection,
-        },
+        "camera": camera,
         "lights": lights,
         "ambient": list(scene.ambient),
         "background": list(scene.background),
