@@ -177,22 +177,38 @@ def _add_scan_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--arithmetic", default="exact", choices=["exact", "float32", "float64"])
 
 
-def _scan(args: argparse.Namespace, trace: bool):
-    from .raster import scan_convert
-
+def _scan_arguments(args: argparse.Namespace) -> tuple:
+    """(polygon, width, height, options) of the scan commands' arguments."""
     polygon = parse_vertices(args.vertices)
     default_width, default_height = _default_size(polygon)
     width = default_width if args.width is None else args.width
     height = default_height if args.height is None else args.height
     options = {n: getattr(args, n) for n in ("sample", "rule", "subpixel_bits", "arithmetic")}
+    return polygon, width, height, options
+
+
+def _scan(args: argparse.Namespace, trace: bool):
+    from .raster import scan_convert
+
+    polygon, width, height, options = _scan_arguments(args)
     return scan_convert(polygon, width, height, trace=trace, **options)
 
 
 def _cmd_trace(args: argparse.Namespace) -> None:
     from .trace.table import trace_table
 
-    result = _scan(args, trace=True)
-    print(result.trace.to_json() if args.json else trace_table(result.trace))
+    if args.gif is None:
+        result = _scan(args, trace=True)
+        print(result.trace.to_json() if args.json else trace_table(result.trace))
+        return
+    if Path(args.gif).suffix.lower() != ".gif":
+        raise ValueError(f"--gif must name a .gif file; got {_shown(args.gif)}")
+    from .widgets import scan_conversion_stepper
+
+    polygon, width, height, options = _scan_arguments(args)
+    stepper = scan_conversion_stepper(polygon, width, height, **options)
+    written = stepper.save(args.gif)
+    print(f"{written[0]}: {len(stepper.model)} steps, drawn as the stepper shows them")
 
 
 def _cmd_fill(args: argparse.Namespace) -> None:
@@ -843,6 +859,9 @@ def build_parser() -> argparse.ArgumentParser:
     trace = commands.add_parser("trace", help=summary, run=_cmd_trace)
     _add_scan_options(trace)
     trace.add_argument("--json", action="store_true", help='print {"events": [...]} instead')
+    trace.add_argument(
+        "--gif", metavar="OUT.gif", help="save the steps as an animated GIF (as the stepper shows)"
+    )
     fill = commands.add_parser("fill", help="scan-convert a polygon into a PNG", run=_cmd_fill)
     _add_scan_options(fill)
     fill.add_argument("-o", "--output", required=True, help=_OUTPUT_HELP)

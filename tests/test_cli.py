@@ -7,6 +7,7 @@ import sys
 
 import matplotlib.image
 import pytest
+from PIL import Image
 
 from scanviz.cli import main
 
@@ -33,6 +34,19 @@ def test_trace_json_shape(capsys):
     assert set(aet[6][0]) >= {"x", "dxdy", "ymax", "winding"}
     spans = [(e["y"], e["x_start"], e["x_end"]) for e in events if e["kind"] == "span"]
     assert spans[:2] == [(1, 4, 12), (2, 4, 12)]
+
+
+def test_trace_gif_saves_every_step_as_the_stepper_shows_it(capsys, tmp_path):
+    out, triangle = tmp_path / "slide.gif", "0,0 4,0 4,3"
+    assert main(["trace", "--vertices", triangle, "--gif", str(out)]) == 0
+    said = capsys.readouterr().out
+    assert main(["trace", "--vertices", triangle, "--json"]) == 0
+    events = json.loads(capsys.readouterr().out)["events"]
+    with Image.open(out) as gif:
+        assert gif.n_frames == len(events) + 1  # the start, then one frame per event
+    assert said.startswith(str(out)) and f"{len(events)} steps" in said
+    assert main(["trace", "--vertices", SLIDE, "--gif", str(tmp_path / "x.png")]) == 2
+    assert "--gif must name a .gif file" in capsys.readouterr().err
 
 
 def test_center_sampling_and_rules_are_options(capsys):

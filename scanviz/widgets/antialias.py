@@ -602,7 +602,7 @@ def plot_period_table(m: float, levels: int = 64, period: int | None = None):
         Left, the upper, middle and lower areas of the table's entries
         dxy_j = -1/2 + j/p, j = 0..p, over the formula between them; right,
         their intensities floor(A (levels - 1) + 1/2). The title gives the
-        period, m·p, the nearest integer n and the residual |m·p - n|.
+        period, m·p, the nearest integer n and the residual abs(m·p - n).
 
     Raises
     ------

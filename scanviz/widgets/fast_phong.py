@@ -82,7 +82,7 @@ class FastPhongView:
         The fast colours of the samples shaded so far, `UNSHADED` on the
         covered samples still to come, `OUTSIDE` elsewhere.
     error_image : matplotlib AxesImage
-        max over r, g, b of |fast − exact| in levels on the samples shaded so far (NaN elsewhere).
+        max over r, g, b of abs(fast − exact) in levels on the samples shaded so far (NaN elsewhere).
     pixel_patches : list of matplotlib Rectangle
         Around the current pixel, one per panel.
     text : ipywidgets.HTML
