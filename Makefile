@@ -40,7 +40,7 @@ jail:
 	|| (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends bubblewrap)
 
 lint: $(STAMP)
-	$(BIN)/ruff check scanviz tests examples docs/conf.py
+	$(BIN)/ruff check scanviz tests examples docs/conf.py docs/_ext
 
 test: lint chromium jail
 	$(WARMUP)

@@ -1,4 +1,8 @@
-"""Every lesson and exercise notebook, run in JupyterLab in headless Chromium, as a student would.
+"""Every lesson and a sample of the exercise notebooks, run in JupyterLab in headless Chromium.
+
+The sample (`tests.test_notebooks.IN_CHROMIUM`) has one exercise of each stage;
+the other exercise notebooks are the same template and run with a kernel only
+(tests/test_notebooks.py).
 
 The window is 1280 × 800 with the file browser open. For each notebook the
 test runs all cells from the Run menu and then checks, each as its own
@@ -50,11 +54,13 @@ import pytest
 from playwright.sync_api import Locator, Page, sync_playwright
 from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
+from tests.test_notebooks import IN_CHROMIUM
+
 ROOT = Path(__file__).resolve().parents[2]
 NOTEBOOK_DIR = ROOT / "notebooks"
 NOTEBOOKS = sorted(
     [p.relative_to(NOTEBOOK_DIR).as_posix() for p in NOTEBOOK_DIR.glob("[01]*.ipynb")]
-    + [p.relative_to(NOTEBOOK_DIR).as_posix() for p in NOTEBOOK_DIR.glob("exercises/*.ipynb")]
+    + [f"exercises/{name}" for name in IN_CHROMIUM]
 )
 SCREENSHOTS = Path(
     os.environ.get("SCANVIZ_SCREENSHOTS") or Path(__file__).resolve().parent / "screenshots"
