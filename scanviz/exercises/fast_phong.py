@@ -58,7 +58,7 @@ def case_model(inputs: dict) -> ReflectionModel:
     return ReflectionModel(**inputs["model"])
 
 
-def _shade(inputs: dict, tracer):
+def _shade(inputs: dict, tracer=None):
     return fast_phong_triangle(
         inputs["vertices"],
         inputs["normals"],

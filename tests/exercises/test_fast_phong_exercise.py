@@ -21,9 +21,8 @@ from scanviz.exercises.core import (
     run_case,
     score,
 )
-from scanviz.exercises.fast_phong import CATEGORIES, KINDS, QUADRATICS, case_model
+from scanviz.exercises.fast_phong import CATEGORIES, KINDS, QUADRATICS, _shade, case_model
 from scanviz.exercises.release import ANSWER_MARKER, answer_cell_source, notebook_name
-from scanviz.shading.fast_phong import fast_phong_triangle
 from scanviz.shading.lut import level_comparisons, lut_level, lut_level_coherent, specular_lut
 from scanviz.trace import Recorder
 
@@ -33,20 +32,6 @@ LEVEL, DIFFERENCE = get("specular_level"), get("forward_difference")
 BOTH = (LEVEL, DIFFERENCE)
 FOLDER = Path(__file__).parents[2] / "notebooks" / "exercises"
 AT_U, BLINN, NARROW, GRAZING, DULL = LEVEL.public
-
-
-def _shade(inputs, trace=None):
-    return fast_phong_triangle(
-        inputs["vertices"],
-        inputs["normals"],
-        inputs["to_light"],
-        inputs["to_viewer"],
-        case_model(inputs),
-        width=inputs["width"],
-        height=inputs["height"],
-        expansion=inputs["expansion"],
-        trace=trace,
-    )
 
 
 def _pixels(case):
