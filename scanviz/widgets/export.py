@@ -141,11 +141,7 @@ def save_steps(
     if milliseconds is None:
         milliseconds = stepper.play.interval
     milliseconds = check_int("milliseconds", milliseconds, 10, 60_000)
-    path, start = Path(path), stepper.slider.value
-    try:
-        frames = _padded([frame_image(stepper, step) for step in chosen])
-    finally:
-        stepper.slider.value = start
+    path, frames = Path(path), _frames(stepper, chosen)
     if path.suffix.lower() == ".gif":
         _write_gif(frames, path, milliseconds)
         return [path]
@@ -155,6 +151,15 @@ def save_steps(
         written.append(path / f"step_{step:05d}.png")
         frame.save(written[-1])
     return written
+
+
+def _frames(stepper, steps: list[int]) -> list:
+    """The pictures of `steps`, on canvases of one size; the stepper is put back where it was."""
+    start = stepper.slider.value
+    try:
+        return _padded([frame_image(stepper, step) for step in steps])
+    finally:
+        stepper.slider.value = start
 
 
 def _padded(frames: list) -> list:
@@ -184,11 +189,7 @@ def gif_data_uri(stepper, *, max_frames: int = 16, milliseconds: int = 700) -> s
     if stepper.slider is None:
         return ""
     chosen = frame_steps(len(stepper.model), None, max_frames)
-    start = stepper.slider.value
-    try:
-        frames = _padded([frame_image(stepper, step) for step in chosen])
-    finally:
-        stepper.slider.value = start
+    frames = _frames(stepper, chosen)
     buffer = io.BytesIO()
     scale = min(1.0, 720 / max(f.width for f in frames))
     if scale < 1.0:
