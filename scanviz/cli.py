@@ -501,7 +501,7 @@ def _add_surface_command(commands) -> None:
 def _cmd_conformance(args: argparse.Namespace) -> int:
     from .conformance import main as conformance_main  # imported only when asked for
 
-    return conformance_main(fuzz=args.fuzz, seed=args.seed)
+    return conformance_main(fuzz=args.fuzz, seed=args.seed, scenes=args.scenes)
 
 
 def _cmd_exercises_list(args: argparse.Namespace) -> None:
@@ -877,6 +877,10 @@ def build_parser() -> argparse.ArgumentParser:
         "--fuzz", type=_integer, default=0, metavar="N", help="N more fuzz inputs"
     )
     conformance.add_argument("--seed", type=_integer, default=0, metavar="S", help="fuzz seed")
+    conformance.add_argument(
+        "--scenes", type=_at_least_one, default=None, metavar="N",
+        help="random scenes of 'visibility agrees with the z-buffer' (default 64)",
+    )  # fmt: skip
     summary = "compile every numba kernel now (make lab and make test do it once)"
     commands.add_parser("warmup", help=summary, run=_cmd_warmup)
     _add_exercise_commands(commands)

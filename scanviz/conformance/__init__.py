@@ -9,9 +9,10 @@ public entry points (`scanviz.conformance.fuzz`, needs hypothesis). See
 from __future__ import annotations
 
 from .suite import CATEGORIES, Outcome, run_category, run_suite
+from .visibility_checks import SCENES
 
 
-def main(fuzz: int = 0, seed: int = 0) -> int:
+def main(fuzz: int = 0, seed: int = 0, scenes: int | None = None) -> int:
     """Run the suite, then `fuzz` fuzz inputs; return 0 only when everything passes.
 
     Parameters
@@ -20,6 +21,9 @@ def main(fuzz: int = 0, seed: int = 0) -> int:
         How many fuzz inputs to try after the suite (0: none).
     seed : int
         Seed of the suite's generators and of hypothesis.
+    scenes : int or None
+        Random scenes of the category "visibility agrees with the z-buffer"
+        (None: `SCENES`).
 
     Returns
     -------
@@ -27,7 +31,7 @@ def main(fuzz: int = 0, seed: int = 0) -> int:
         Exit status: 0 when every category passes and no fuzz input gave
         "anything else", 1 otherwise.
     """
-    passed = run_suite(seed)
+    passed = run_suite(seed, scenes=SCENES if scenes is None else scenes)
     if fuzz > 0:
         try:
             from .fuzz import run_campaign

@@ -33,8 +33,9 @@ from .raster_checks import (
     winding_and_parity,
 )
 from .surfaces_checks import fpa_vs_zbuffer
-from .visibility_checks import visibility_vs_zbuffer
+from .visibility_checks import SCENES, visibility_agrees
 
+VISIBILITY = "visibility agrees with the z-buffer"  # its random scenes: `run_category`'s `scenes`
 CATEGORIES: dict[str, Callable[[np.random.Generator], Outcome]] = {
     "fill convention": fill_convention,
     "no double hits": shared_edges,
@@ -51,34 +52,40 @@ CATEGORIES: dict[str, Callable[[np.random.Generator], Outcome]] = {
     "interpolation": interpolation_vs_barycentric,
     "traced == compiled": traced_equals_compiled,
     "built-in scenes": builtin_scenes,
-    "visibility vs z-buffer": visibility_vs_zbuffer,
+    VISIBILITY: visibility_agrees,
     "FPA vs z-buffer": fpa_vs_zbuffer,
     "DISLOP vs exact area": dislop_vs_exact_area,
 }
 
 
-def run_category(name: str, seed: int = 0) -> Outcome:
-    """Run one category with its own seeded generator; an unexpected exception is a FAIL."""
+NAME_WIDTH = max(map(len, CATEGORIES))  # the names line up in the output
+
+
+def run_category(name: str, seed: int = 0, scenes: int = SCENES) -> Outcome:
+    """Run one category with its own seeded generator; an unexpected exception is a FAIL.
+
+    `scenes` is the number of random scenes of the visibility category.
+    """
     index = list(CATEGORIES).index(name)
     rng = np.random.default_rng([seed, index])
     try:
-        return CATEGORIES[name](rng)
+        return visibility_agrees(rng, scenes) if name == VISIBILITY else CATEGORIES[name](rng)
     except Exception as error:  # noqa: BLE001 -- a category that raises fails, saying why
         return Outcome(False, "", f"raised {one_line(error)}")
 
 
 def format_line(name: str, outcome: Outcome) -> str:
     """``PASS  name  counts``, or ``FAIL  name  counts; first failure: case`` (one line)."""
-    line = f"{'PASS' if outcome.passed else 'FAIL'}  {name:<24}  {outcome.counts}"
+    line = f"{'PASS' if outcome.passed else 'FAIL'}  {name:<{NAME_WIDTH}}  {outcome.counts}"
     return line if outcome.passed else f"{line}; first failure: {outcome.failure}"
 
 
-def run_suite(seed: int = 0, out=print) -> bool:
+def run_suite(seed: int = 0, out=print, scenes: int = SCENES) -> bool:
     """Run every category, printing one line each and a summary; True when all pass."""
     start = time.perf_counter()
     passed = 0
     for name in CATEGORIES:
-        outcome = run_category(name, seed)
+        outcome = run_category(name, seed, scenes)
         passed += outcome.passed
         out(format_line(name, outcome))
     seconds = time.perf_counter() - start

@@ -137,8 +137,10 @@ def classify_all(surfaces: Surfaces, pieces: list[Piece], q: int) -> np.ndarray:
     if not pieces:
         return np.array([], dtype=str)
     vertices = np.concatenate([piece.vertices for piece in pieces])
-    starts = np.cumsum([0] + [len(piece.vertices) for piece in pieces[:-1]])
-    d = vertices[:, 2] - surfaces.depth(q, vertices[:, 0], vertices[:, 1])
+    sizes = [len(piece.vertices) for piece in pieces]
+    starts = np.cumsum([0] + sizes[:-1])
+    owners = np.repeat([piece.polygon for piece in pieces], sizes)
+    d = surfaces.vertex_gaps(vertices, owners, q)
     far = np.logical_or.reduceat(d > surfaces.tolerance, starts)
     near = np.logical_or.reduceat(d < -surfaces.tolerance, starts)
     return np.where(far & near, STRADDLES, np.where(far, BEHIND, np.where(near, FRONT, ON)))
@@ -392,6 +394,11 @@ class BSP(Visibility):
         left_out = surfaces.count - len(pieces)
         stats = BspStats(len(nodes), builder.splits, tree.height, len(order), left_out)
         return Decision(stats, tuple(order), "under" if front_to_back else "over", detail=tree)
+
+    def depth_slack(self, surfaces: Surfaces, stats: object) -> float:
+        """2 x the tolerance: a piece on the far side of a node's plane may come within the
+        tolerance in front of it, a piece on the near side within the tolerance behind it."""
+        return 2 * surfaces.tolerance
 
     def listed(self, surfaces: Surfaces) -> list[Piece]:
         """The polygon list MakeBSP starts from: `sequence` first, then input order."""

@@ -36,8 +36,18 @@ than the tolerance, so no piece is ever cut twice by one plane; a piece is
 moved at most once while it lives; painting removes the far end. At most
 ``max_splits`` splits are made (default `SPLITS_PER_POLYGON` per polygon
 plus `SPLITS_SPARE`); past it, or when no member of a cycle straddles
-another's plane (only rounding in the split pieces' vertices makes such a
-cycle), the pair is accepted in list order and counted ``unresolved``.
+another's plane, the pair is accepted in list order. If the two pieces
+cover no common sample (pieces cut along the same line meet only there:
+their outlines touch, their samples do not), the order cannot matter and
+the pair is counted in ``settled["no_shared_sample"]``; otherwise it is
+counted ``unresolved``.
+
+The promise (`DepthSort.depth_slack`): when nothing is unresolved, every
+sample shows a polygon at most the tolerance farther than the nearest. The
+piece painted last at a sample was, when each earlier one there was
+painted, still in the list and settled against it by a test that puts it
+no farther than the tolerance behind (minimax, the plane tests) or shows
+they share no sample (extents, projections, ``no_shared_sample``).
 
 Traced: ``polygons_sorted`` (the list at the start and after each split),
 one ``pair_tested`` per pair examined (every test run and the one that
@@ -66,6 +76,7 @@ import numpy as np
 from .. import steps
 from ..trace.display import RichDisplay
 from ..trace.events import AmbiguityTest, PairTested, PiecesSwapped, PolygonSplit, PolygonsSorted
+from .draw_decisions import paint
 from .interface import Decision, Visibility, piece_record, register
 from .painter import depth_order
 from .screen_polygons import STRADDLES, Piece, Surfaces
@@ -235,6 +246,11 @@ class DepthSort(Visibility):
         sorter.stats.pieces, sorter.stats.left_out = len(order), surfaces.count - len(pieces)
         return Decision(sorter.stats, tuple(order), "over")
 
+    def depth_slack(self, surfaces: Surfaces, stats: DepthSortStats) -> float | None:
+        """The tolerance, when no pair was left unresolved: each pair's test that let S go
+        first shows S no nearer than S' by more than it (None: a pair was accepted as listed)."""
+        return surfaces.tolerance if stats.unresolved == 0 else None
+
 
 class _Sorter:
     """The list of depth sort and its loop (see the module).
@@ -395,11 +411,23 @@ class _Sorter:
             return ("swap", other)
         why = "interpenetration" if settled is None else "cycle"
         cut = self._choose_cut(s, other, why) if self.stats.splits < self.budget else None
-        self._emit_pair(s, other, run, settled, "split" if cut else "unresolved")
-        if cut is None:
+        if cut is not None:
+            self._emit_pair(s, other, run, settled, "split")
+            return ("split", *cut, why)
+        if self._share_samples(s, other):
+            self._emit_pair(s, other, run, settled, "unresolved")
             self.stats.unresolved += 1
-            return None
-        return ("split", *cut, why)
+        else:  # only their outlines meet (pieces cut along one line): any order paints the same
+            self.stats.settled["no_shared_sample"] = (
+                self.stats.settled.get("no_shared_sample", 0) + 1
+            )
+            self._emit_pair(s, other, run, settled, "no_shared_sample")
+        return None
+
+    def _share_samples(self, s: int, other: int) -> bool:
+        """Whether the two pieces cover a common sample (each painted alone)."""
+        masks = [paint(self.surfaces, [self.pieces[k]], "over").polygon >= 0 for k in (s, other)]
+        return bool((masks[0] & masks[1]).any())
 
     def _choose_cut(self, s: int, other: int, why: str):
         """(piece, cutter): a piece straddling the other's plane, from the pair, then the cycle."""

@@ -18,6 +18,10 @@ Sizes are chosen for a 16 x 12 raster unless a function says otherwise.
   vertex happens to be right here.
 - `slides_bsp`: the slides' BSP example from viewpoint C (32 x 24, a
   reconstruction; `BSP(sequence=BSP_SEQUENCE)` gives the slides' tree).
+- `split_hole`: two polygons whose split once left samples empty (a
+  regression scene, 32 x 32).
+- `random_scene(kind, seed, size)`: seeded random scenes of the kinds that
+  stress splitting (`RANDOM_KINDS`), for the agreement campaign.
 """
 
 from __future__ import annotations
@@ -134,3 +138,89 @@ def slides_bsp() -> ScreenPolygons:
         corners = [(u0, v0, bottom), (u1, v1, bottom), (u1, v1, top), (u0, v0, top)]
         walls.append([(12 + 10 * u / v, 10 + 10 * h / v, 1 - 1 / v) for u, v, h in corners])
     return _scene(walls)
+
+
+def split_hole() -> ScreenPolygons:
+    """Two quads (32 x 32) whose BSP split left 9 samples empty when a piece's rows came from
+    its corners' own depths rather than its plane's (corners not coplanar)."""
+    return ScreenPolygons.from_polygons(
+        [
+            [[34.25, 53.75, 0.49524753217059897], [32.5, 54.5, 0.4884976242681647],
+             [0.0, 13.75, 0.4724993346515287], [6.25, 7.0, 0.504749005731651]],
+            [[-2.9050833466952337, 46.4032270246079, 0.39847807124131474],
+             [-14.837687936407182, 41.5759466890838, 0.37233538819589335],
+             [-17.65522605249134, 27.44248192010425, 0.3921498379869859],
+             [2.7598726438833863, 19.425047285111837, 0.4694290280618343]],
+        ]
+    )  # fmt: skip
+
+
+RANDOM_KINDS = (
+    "quads", "triangles", "near_coplanar", "interpenetrating", "cyclic", "slivers", "steep", "grid",
+)  # fmt: skip
+_SLOPES = {"steep": 5.0, "interpenetrating": 1.0}  # depth change across the raster, else 0.05
+
+
+def random_scene(kind: str, seed: int, size: int = 32) -> ScreenPolygons:
+    """A seeded random scene of 2-8 polygons over a size x size raster, of one of `RANDOM_KINDS`.
+
+    "quads": convex 3-6-gons with random corner depths (not coplanar);
+    "triangles": slanted triangles; "near_coplanar": polygons within about
+    1e-9 of one plane; "interpenetrating": steep planes that cross inside
+    the overlaps; "cyclic": three bars in a cycle; "slivers": triangles with
+    a corner near the opposite edge; "steep": planes rising 5 per raster;
+    "grid": integer corners and depths in 64ths (lines through samples).
+
+    >>> random_scene("cyclic", 0).count
+    3
+    """
+    rng = np.random.default_rng(seed)
+    if kind == "cyclic":
+        return _cyclic_bars(rng, size)
+    if kind not in RANDOM_KINDS:
+        raise ValueError(f"'kind' must be one of {RANDOM_KINDS}; got {kind!r}")
+    origin, slope, level = (
+        rng.uniform(0, size, 2),
+        rng.normal(size=2) * 0.02 / size,
+        rng.uniform(0.3, 0.7),
+    )
+    polygons = []
+    for k in range(int(rng.integers(2, 9))):
+        corners = 3 if kind in ("triangles", "slivers") else int(rng.integers(3, 7))
+        center = rng.uniform(0, size, 2)
+        angles = np.sort(rng.uniform(0, 2 * np.pi, corners))
+        xy = center + rng.uniform(3, 0.7 * size) * np.column_stack([np.cos(angles), np.sin(angles)])
+        if kind == "slivers":
+            xy[2] = xy[0] + (xy[1] - xy[0]) * rng.uniform() + rng.normal(size=2) * 0.05
+        if kind == "grid":
+            xy = np.round(xy)
+        if kind == "quads":
+            z = rng.uniform(0.3, 0.6, corners)
+        elif kind == "near_coplanar":
+            tilt = slope + rng.normal(size=2) * 1e-10
+            z = level + (xy - origin) @ tilt + rng.normal() * 1e-9 * (k > 0)
+        else:
+            z = rng.uniform(0.3, 0.7) + (xy - center) @ (
+                rng.normal(size=2) * _SLOPES.get(kind, 0.05) / size
+            )
+        if kind == "grid":
+            z = np.round(z * 64) / 64
+        polygons.append(np.column_stack([xy, z]).tolist())
+    return ScreenPolygons.from_polygons(polygons)
+
+
+def _cyclic_bars(rng: np.random.Generator, size: int) -> ScreenPolygons:
+    """Three jittered bars through the middle, each sloped in depth along its length."""
+    bars = []
+    for k in range(3):
+        angle = 2 * np.pi * k / 3 + rng.normal() * 0.1
+        along = np.array([np.cos(angle), np.sin(angle)])
+        across = np.array([-along[1], along[0]])
+        center = size / 2 + rng.normal(size=2)
+        ends = (center - 0.6 * size * along, center + 0.6 * size * along)
+        xy = np.array(
+            [ends[0] - 3 * across, ends[1] - 3 * across, ends[1] + 3 * across, ends[0] + 3 * across]
+        )
+        z = 0.5 + ((xy - center) @ along) * 0.01 * rng.uniform(0.5, 1.5)
+        bars.append(np.column_stack([xy, z]).tolist())
+    return ScreenPolygons.from_polygons(bars)

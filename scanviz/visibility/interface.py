@@ -58,7 +58,10 @@ class VisibilityResult:
     background), ``values`` (H, W, K); ``stats`` the painting counts (a
     `ZBufferStats`: fragments painted and kept), ``algorithm`` the
     algorithm's own stats, ``order`` the pieces painted (list-priority
-    algorithms), ``detail`` its structure, ``trace`` the recorded events.
+    algorithms), ``detail`` its structure, ``trace`` the recorded events;
+    ``depth_slack`` the algorithm's promise (`Visibility.depth_slack`): at
+    every sample the polygon shown is at most this much farther than the
+    nearest one covering it (None: no promise).
     """
 
     name: str
@@ -70,6 +73,7 @@ class VisibilityResult:
     order: tuple[Piece, ...] = ()
     detail: object = None
     trace: Trace | None = field(default=None)
+    depth_slack: float | None = None
 
 
 class Visibility:
@@ -79,6 +83,11 @@ class Visibility:
 
     def decide(self, surfaces: Surfaces, tracer) -> Decision:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def depth_slack(self, surfaces: Surfaces, stats: object) -> float | None:
+        """How much farther than the nearest covering polygon the one shown may be, at any
+        sample, by the algorithm's own rule (docs/visibility.md); None: no promise."""
+        return None
 
 
 @dataclass(frozen=True)
@@ -136,7 +145,7 @@ def solve(
     options = {"sample": sample, "subpixel_bits": subpixel_bits, "perspective": bool(perspective)}
     if isinstance(chosen, ZBuffer):
         z = zbuffer(polygons, width, height, **options, trace=tracer)
-        return VisibilityResult("zbuffer", z.depth, z.polygon, z.values, z.stats, z.stats, trace=z.trace)  # fmt: skip
+        return VisibilityResult("zbuffer", z.depth, z.polygon, z.values, z.stats, z.stats, trace=z.trace, depth_slack=0.0)  # fmt: skip
     check_memory(
         width * height * 8 * (3 + polygons.value_count),
         f"a {width}x{height} {chosen.name} render with {polygons.value_count} attributes per pixel",
@@ -162,6 +171,7 @@ def solve(
         decision.pieces,
         decision.detail,
         recorded,
+        chosen.depth_slack(surfaces, decision.stats),
     )
 
 

@@ -119,6 +119,11 @@ class Scanline(Visibility):
             ids, stats, y_start, y_end = scanline_reference(surfaces, bool(self.coherence), tracer)
         return Decision(stats, target=ids, detail=ScanlineDetail(y_start, y_end, surfaces.planes))
 
+    def depth_slack(self, surfaces: Surfaces, stats: object) -> float:
+        """The tolerance: each sample shows the nearest by its plane's depth, which differs from
+        the z-buffer's interpolated depth only by rounding (far below the tolerance)."""
+        return surfaces.tolerance
+
 
 class ActiveSurface:
     """A polygon in the AST: its edges crossing the current row, from the ET/AET walk (`scan_rows`).

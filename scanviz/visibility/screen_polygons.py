@@ -12,13 +12,22 @@ here and a depth test there compare the same numbers.
 
 A *piece* is a polygon, or the part of one that one or more cuts leave.
 Cutting polygon p by the plane of polygon q splits p's samples by the sign
-of z_p(x, y) - z_q(x, y) (the depth difference of the two planes): the
-piece "behind q" keeps the samples where it is > 0, the piece "in front"
-the others. Both pieces evaluate the same expression at each sample, so they
-partition p's samples exactly: painting them covers each sample of p once,
-with p's own depth and values, as the z-buffer draws p. The piece's
-vertices (the polygon clipped by the cut planes, in floating point) serve
-the algorithms' geometric tests only, never coverage.
+of z_p(x, y) - z_q(x, y) (the depth difference of the two planes), taken
+exactly (`scanviz.visibility.cut_side`): the piece "behind q" keeps the
+samples where it is > 0, the piece "in front" those where it is < 0, and a
+sample on the line goes to the piece on its +x side (+y for a line
+parallel to x), as the fill rule gives border samples. Both pieces
+evaluate the same exact sign, so they partition p's samples: painting them
+covers each sample of p once, with p's own depth and values, as the
+z-buffer draws p. The piece's vertices are p's clipped at that line (in
+floating point, from the exact depth differences at p's vertices); they
+serve the algorithms' geometric tests and bound the rows painting visits,
+never decide a sample.
+
+A polygon here is its plane: the z-buffer draws polygon p with the depth
+z_p of its plane (Newell's, fitted to its vertices), so the z of its
+vertices are those of the plane at their x, y (a quad whose corners are not
+coplanar is drawn, and decided on, flat).
 
 Classification against a plane uses `PLANE_TOLERANCE`: a vertex within
 tolerance = PLANE_TOLERANCE * max(1, max |z|) of the plane in depth counts as
@@ -35,7 +44,7 @@ import numpy as np
 from ..raster.fixed import exact_bits, snap_units
 from ..raster.interpolate import depth_plane, plane_depth, reaches_raster, vertex_channels
 from ..trace.events import Cut  # the trace's record is the domain record
-from . import zbuffer_compiled
+from . import cut_side, zbuffer_compiled
 from .zbuffer import ScreenPolygons
 
 PLANE_TOLERANCE = 1e-9  # relative to the scene's depth magnitude (at least 1)
@@ -159,8 +168,11 @@ class Surfaces:
 
     @cached_property
     def xyz(self) -> np.ndarray:
-        """(M, 3) x, y (sample frame, snapped) and z of every vertex, read-only."""
+        """(M, 3) x, y (sample frame, snapped) and z of every vertex, z on its polygon's plane; read-only."""
         xyz = np.column_stack([self.positions, self.polygons.z])
+        for p in np.flatnonzero(self.drawn).tolist():
+            rows = slice(self.polygons.offsets[p], self.polygons.offsets[p + 1])
+            xyz[rows, 2] = self.depth(p, xyz[rows, 0], xyz[rows, 1])
         xyz.setflags(write=False)
         return xyz
 
@@ -180,14 +192,18 @@ class Surfaces:
         """Counter-clockwise on the screen (c > 0): the viewer is on the front side of its plane."""
         return bool(self.normals[p, 2] > 0)
 
-    def behind_plane(self, piece: Piece, q: int) -> np.ndarray:
-        """Per vertex of `piece`, its depth minus the depth of q's plane there (> 0: behind q's plane)."""
-        v = piece.vertices
-        return v[:, 2] - self.depth(q, v[:, 0], v[:, 1])
+    def gaps(self, piece: Piece, q: int) -> np.ndarray:
+        """Per vertex of `piece`, z of its plane minus z of q's plane there, exactly signed (> 0: behind q's plane)."""
+        return self.vertex_gaps(piece.vertices, np.full(len(piece.vertices), piece.polygon), q)
+
+    def vertex_gaps(self, vertices: np.ndarray, owners: np.ndarray, q: int) -> np.ndarray:
+        """`gaps` of many vertices at once: vertices (n, 3) of the polygons `owners` (n,)."""
+        owns = self.planes[owners]
+        return cut_side.gaps(owns, self.planes[q], vertices[:, 0].copy(), vertices[:, 1].copy())
 
     def classify(self, piece: Piece, q: int) -> str:
         """BEHIND, FRONT (of q's plane, in depth: the viewer's side), ON (coplanar) or STRADDLES."""
-        d = self.behind_plane(piece, q)
+        d = self.gaps(piece, q)
         far, near = bool((d > self.tolerance).any()), bool((d < -self.tolerance).any())
         if far and near:
             return STRADDLES
@@ -196,10 +212,11 @@ class Surfaces:
     def split(self, piece: Piece, q: int) -> tuple[Piece, Piece]:
         """(front, behind): `piece` cut by q's plane, exactly as a partition of its samples.
 
-        The vertices of each part are the piece clipped by the plane (in
-        depth: the part nearer than q's plane, and the part beyond it).
+        The vertices of each part are the piece clipped at the line where the
+        two planes meet (the part nearer than q's plane, and the part beyond
+        it), placed by the exact depth differences at the piece's vertices.
         """
-        d = self.behind_plane(piece, q)
+        d = self.gaps(piece, q)
         v = piece.vertices
         near, far = [], []
         for i in range(len(v)):
@@ -223,13 +240,8 @@ class Surfaces:
         return rows
 
     def keeps(self, piece: Piece, x: int, y: int) -> bool:
-        """Whether sample (x, y) of piece's polygon is in the piece (the same formula as compiled)."""
-        own = self.planes[piece.polygon]
-        for cut in piece.cuts:
-            difference = plane_depth(*own, x, y) - plane_depth(*self.planes[cut.other], x, y)
-            if (difference > 0.0) != cut.behind:
-                return False
-        return True
+        """Whether sample (x, y) of piece's polygon is in the piece (the compiled painter's test)."""
+        return not piece.cuts or bool(cut_side.keeps(self.cut_rows(piece), x, y))
 
 
 def _exact_planes(polygons, units, scale, width, height):

@@ -232,6 +232,11 @@ class Warnock(Visibility):
         )
         return Decision(_stats(quadtree, tests, "traced reference"), target=target, detail=quadtree)
 
+    def depth_slack(self, surfaces: Surfaces, stats: object) -> float:
+        """The tolerance: each sample shows the nearest by its plane's depth, which differs from
+        the z-buffer's interpolated depth only by rounding (far below the tolerance)."""
+        return surfaces.tolerance
+
     def _subdivide_traced(self, surfaces, spans, span_start, candidates, tracer):
         """The reference walk: explicit stack of (level, parent, x0, x1, y0, y1, polygons)."""
         width, height = surfaces.width, surfaces.height

@@ -38,6 +38,7 @@ from ..raster.walk_compiled import (
     step_row,
 )
 from ..threads import use_threads
+from .cut_side import keeps
 
 depth_plane = njit(cache=True)(formulas.depth_plane)
 plane_depth = njit(cache=True, inline="always")(formulas.plane_depth)
@@ -70,22 +71,6 @@ def start_edge(table, e, channels, scale, y, edge_value, edge_dvdy):
         dvdy = edge_slope(channels[lower, k], channels[upper, k], y_lower, y_upper)
         edge_dvdy[e, k] = dvdy
         edge_value[e, k] = edge_start(channels[lower, k], dvdy, y_lower, y)
-
-
-@njit(cache=True, inline="always")
-def keeps(cuts, x, y):
-    """Whether sample (x, y) is on the kept side of every cut of a piece (`scanviz.visibility.screen_polygons`).
-
-    A cut row is the piece's plane, the cutting polygon's plane (five numbers
-    each, as `plane_depth` takes them) and 1.0 to keep the samples behind that
-    plane (depth difference > 0), 0.0 to keep the others.
-    """
-    for i in range(cuts.shape[0]):
-        own = plane_depth(cuts[i, 0], cuts[i, 1], cuts[i, 2], cuts[i, 3], cuts[i, 4], x, y)
-        other = plane_depth(cuts[i, 5], cuts[i, 6], cuts[i, 7], cuts[i, 8], cuts[i, 9], x, y)
-        if (own - other > 0.0) != (cuts[i, 10] == 1.0):
-            return False
-    return True
 
 
 @njit(cache=True, inline="always")

@@ -306,6 +306,7 @@ class DepthSortView:
             "order_ok": "S may be painted before S'",
             "swap": "S' must go first: it moves to the far end",
             "split": "no order works: a piece is split",
+            "no_shared_sample": "no split breaks it, but they share no sample: any order paints the same",
             "unresolved": "no split breaks it (budget or cycle without straddling): kept as is",
         }.get(pair.outcome, pair.outcome)
         by = (

@@ -66,8 +66,9 @@ def test_main_exits_1_when_a_category_fails_and_prints_one_line_each(monkeypatch
     )
     assert conformance.main() == 1
     lines = capsys.readouterr().out.splitlines()
-    assert lines[0] == "PASS  passes                    3 cases"
-    assert lines[1] == "FAIL  fails                     2 cases; first failure: case 1 is wrong"
+    column = len("PASS  ") + suite.NAME_WIDTH + 2  # the counts line up after the longest name
+    assert lines[0] == "PASS  passes".ljust(column) + "3 cases"
+    assert lines[1] == "FAIL  fails".ljust(column) + "2 cases; first failure: case 1 is wrong"
     assert lines[2].startswith("conformance: 1 passed, 1 failed in ")
     assert len(lines) == 3
 

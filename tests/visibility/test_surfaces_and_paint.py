@@ -65,8 +65,8 @@ def test_classify_against_a_plane():
     assert [surfaces.classify(p, 0) for p in pieces[1:]] == ["behind", "front", "on", "straddles"]
     front, behind = surfaces.split(pieces[4], 0)
     assert (front.label, behind.label) == ("4a", "4b")
-    assert (surfaces.behind_plane(front, 0) <= 1e-12).all()
-    assert (surfaces.behind_plane(behind, 0) >= -1e-12).all()
+    assert (surfaces.gaps(front, 0) <= 1e-12).all()
+    assert (surfaces.gaps(behind, 0) >= -1e-12).all()
     # the cut is the line z = 0.5 on the slope from x = 2 (0.1) to x = 6 (0.9): x = 4
     assert sorted({round(float(x), 9) for x in behind.vertices[:, 0]}) == [4.0, 6.0]
 

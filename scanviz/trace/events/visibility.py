@@ -96,8 +96,11 @@ class PairTested(Event):
     fails). ``outcome`` is "no_overlap" (the minimax test: S' is wholly
     nearer), "order_ok" (S may be painted before S'), "swap" (S' goes to
     the far end), "split" (a cycle: S is cut by the plane of S'), or
-    "unresolved" (no split can break it: the split budget is spent, or a cycle
-    has no member straddling another's plane; the pair is kept in list order).
+    "no_shared_sample" (no split can break it, but the two cover no common
+    sample -- pieces cut along one line touch there -- so either order paints
+    the same; kept in list order) or "unresolved" (no split can break it and
+    they share samples: the split budget is spent, or a cycle has no member
+    straddling another's plane; kept in list order, no depth promise).
     """
 
     kind: ClassVar[str] = "pair_tested"
