@@ -78,16 +78,41 @@ def _add_plane(expansion, size, plane, sign, x, y):
     return size
 
 
+@njit(cache=True, inline="always")
+def _compensated(own, other, x, y):
+    """(value, bound): the gap summed in twice the working precision (Ogita, Rump and Oishi's
+    Dot2, 2005) and the least |value| for which it is the exact gap rounded to a few ulps:
+    its error is below eps |gap| + gamma_10 ** 2 (about 1.2e-30) x the sum of |terms|."""
+    total, carry, size = 0.0, 0.0, 0.0
+    for plane, sign in ((own, 1.0), (other, -1.0)):
+        total, error = _two_sum(total, sign * plane[2])
+        carry += error
+        size += abs(plane[2])
+        for slope, at, origin in ((plane[3], x, plane[0]), (plane[4], y, plane[1])):
+            difference, rest = _two_sum(at, -origin)
+            for part in (difference, rest):
+                product, low = _two_product(sign * slope, part)
+                total, error = _two_sum(total, product)
+                carry += error + low
+                size += abs(product)
+    return total + carry, 1e-15 * size
+
+
 @njit(cache=True)
 def gap(own, other, x, y):
-    """z_own(x, y) - z_other(x, y), exact and then rounded once (so its sign is exact).
+    """z_own(x, y) - z_other(x, y), exact and then rounded (so its sign is exact).
 
-    `own` and `other` are planes (x0, y0, z0, dzdx, dzdy).
+    `own` and `other` are planes (x0, y0, z0, dzdx, dzdy). Summed in twice
+    the working precision; where even that cannot vouch for the sign, summed
+    exactly.
 
     >>> a = np.array([0.0, 0.0, 0.1, 0.1, 0.0]); b = np.array([0.0, 0.0, 0.0, 0.2, 0.0])
     >>> float(gap(a, b, 1.0, 0.0)), gap(a, b, 0.5, 0.0) > 0, gap(a, b, 2.0, 0.0) < 0
     (0.0, True, True)
     """
+    value, bound = _compensated(own, other, x, y)
+    if abs(value) > bound:
+        return value
     expansion = np.empty(18)
     size = _add_plane(expansion, 0, own, 1.0, x, y)
     size = _add_plane(expansion, size, other, -1.0, x, y)

@@ -170,9 +170,10 @@ class Surfaces:
     def xyz(self) -> np.ndarray:
         """(M, 3) x, y (sample frame, snapped) and z of every vertex, z on its polygon's plane; read-only."""
         xyz = np.column_stack([self.positions, self.polygons.z])
-        for p in np.flatnonzero(self.drawn).tolist():
-            rows = slice(self.polygons.offsets[p], self.polygons.offsets[p + 1])
-            xyz[rows, 2] = self.depth(p, xyz[rows, 0], xyz[rows, 1])
+        owners = np.repeat(np.arange(self.count), np.diff(self.polygons.offsets))
+        on_plane = self.drawn[owners]
+        x, y = xyz[on_plane, 0], xyz[on_plane, 1]
+        xyz[on_plane, 2] = plane_depth(*self.planes[owners[on_plane]].T, x, y)
         xyz.setflags(write=False)
         return xyz
 
