@@ -23,7 +23,11 @@ loads its kernels), then `repeat` times per scene: the median is printed.
 Agreement with the z-buffer is measured on the samples either covers:
 "agree" is the fraction showing the z-buffer's polygon, "unique" the
 fraction whose nearest surface is unique by more than `TOLERANCE` in depth,
-"agree@unique" the agreement over those (1 for an exact algorithm).
+"agree@unique" the agreement over those (1 for an exact algorithm);
+"holes" counts the samples the z-buffer covers and the algorithm leaves
+empty, ">slack" those shown farther than the nearest surface by more than
+the algorithm's own promise (`VisibilityResult.depth_slack`; "-": none
+made). Both are 0 for a correct algorithm.
 
 Each algorithm has a time `budget` (seconds of solve calls, warm-up not
 counted). Before a scene, its time is predicted from the growth measured so
@@ -216,17 +220,16 @@ class _Bench:
     repeat: int
     budget: float
     column: int = 11  # width of the algorithm column
-    references: dict = field(default_factory=dict)  # scene index -> (z-buffer ids, unique)
+    references: dict = field(default_factory=dict)  # scene index -> (z-buffer ids, depth, unique)
     zbuffer_seconds: dict = field(default_factory=dict)  # scene index -> seconds
 
-    def reference(self, index: int) -> tuple[np.ndarray, np.ndarray]:
-        """The z-buffer's polygon per sample and where the nearest is unique, for scene `index`."""
+    def reference(self, index: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The z-buffer's polygon and depth per sample, and where the nearest is unique."""
         if index not in self.references:
             polygons = self.scenes[index].polygons
-            self.references[index] = (
-                zbuffer(polygons, self.width, self.height).polygon,
-                unique_nearest(polygons, self.width, self.height),
-            )
+            drawn = zbuffer(polygons, self.width, self.height)
+            unique = unique_nearest(polygons, self.width, self.height)
+            self.references[index] = (drawn.polygon, drawn.depth, unique)
         return self.references[index]
 
     def measure(self, name: str, bar) -> list[dict]:
@@ -270,11 +273,14 @@ class _Bench:
         if name == "zbuffer":
             self.zbuffer_seconds[index] = seconds
         ratio = seconds / self.zbuffer_seconds.get(index, np.nan)
-        agree, unique, agree_unique = agreement(result.polygon, *self.reference(index))
+        ids, depth, unique_mask = self.reference(index)
+        agree, unique, agree_unique = agreement(result.polygon, ids, unique_mask)
+        holes, beyond = _holes_and_beyond(result, ids, depth)
         count = scene.polygons.count
         say(
             f"{name:<{self.column}}{scene.label:<17}{count:>9,}{seconds * 1e3:>10.2f}"
             f"{count / seconds:>12,.0f}{ratio:>11.2f}{agree:>8.4f}{unique:>8.4f}{agree_unique:>13.6f}"
+            f"{holes:>7}{'-' if beyond is None else beyond:>8}"
         )
         return {
             "over_budget": False,
@@ -285,7 +291,18 @@ class _Bench:
             "agree": agree,
             "unique": unique,
             "agree_unique": agree_unique,
+            "holes": holes,
+            "beyond_slack": beyond,
         }
+
+
+def _holes_and_beyond(result, ids: np.ndarray, depth: np.ndarray) -> tuple[int, int | None]:
+    """(samples the z-buffer covers left empty, samples farther than the result's depth_slack)."""
+    holes = int(((ids >= 0) & (result.polygon < 0)).sum())
+    if result.depth_slack is None:
+        return holes, None
+    both = (ids >= 0) & (result.polygon >= 0)
+    return holes, int((result.depth[both] - depth[both] > result.depth_slack).sum())
 
 
 def run_visibility(
@@ -331,7 +348,10 @@ def run_visibility(
         f"within {DEPTH_SPREAD:g} per triangle (seed 0); meshes as render prepares them"
     )
     header = f"{'algorithm':<{column}}{'scene':<17}{'polygons':>9}{'ms':>10}{'polygons/s':>12}"
-    print(header + f"{'x z-buffer':>11}{'agree':>8}{'unique':>8}{'agree@unique':>13}")
+    print(
+        header
+        + f"{'x z-buffer':>11}{'agree':>8}{'unique':>8}{'agree@unique':>13}{'holes':>7}{'>slack':>8}"
+    )
     rows = []
     cells = len(names) * len(bench.scenes)
     with progress(cells, "visibility bench", enabled=max(sizes) >= 1000) as bar:
@@ -345,6 +365,10 @@ def run_visibility(
     print(
         "agree@unique: agree over the unique ones (1 for an exact algorithm); "
         "x z-buffer: time / the z-buffer's time (> 1: slower)"
+    )
+    print(
+        "holes: samples the z-buffer covers left empty; >slack: samples shown farther than the "
+        "nearest by more than the algorithm's depth_slack (-: no promise); 0 when correct"
     )
     if plot:
         save_plot(rows, plot)

@@ -32,7 +32,7 @@ from .surfaces import (
     plot_results,
 )
 from .viewing import ViewingPipelineView, viewing_stepper
-from .visibility import algorithm_names, compare_visibility, taxonomy_table
+from .visibility import algorithm_names, compare_visibility, split_pieces, taxonomy_table
 from .warnock import WarnockView, warnock_stepper
 from .zbuffer import InterpolationView, ZBufferView, interpolation_stepper, zbuffer_stepper
 
@@ -90,6 +90,7 @@ __all__ = [
     "refresh_figure",
     "scan_conversion_stepper",
     "scanline_visibility_stepper",
+    "split_pieces",
     "taxonomy_table",
     "viewing_stepper",
     "warnock_stepper",

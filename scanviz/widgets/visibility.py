@@ -7,6 +7,7 @@ red outlines on the pixels where it shows another polygon than the
 z-buffer. `taxonomy_table` is Sutherland's characterization of the
 algorithms (object or image space; sort first, sort last or subdivide;
 point sampling or continuous) as an HTML table, one row per algorithm.
+`split_pieces` shows how a split polygon's pieces share out its samples.
 """
 
 from __future__ import annotations
@@ -19,7 +20,8 @@ from dataclasses import MISSING, dataclass, fields
 import numpy as np
 
 from ..trace import Recorder
-from ..visibility import ALGORITHMS, ScreenPolygons, Visibility, algorithm, solve, zbuffer
+from ..visibility import ALGORITHMS, ScreenPolygons, Surfaces, Visibility, algorithm, solve, zbuffer
+from ..visibility.draw_decisions import paint
 from ._common import WIDEST, pixel_image
 
 PALETTE = (  # polygon p is PALETTE[p % 9]; no red in it: red marks a disagreement
@@ -231,6 +233,83 @@ def compare_visibility(
         columns = len(handles) if len(handles) <= 4 else math.ceil(len(handles) / 2)
         figure.legend(handles=handles, loc="lower center", ncol=columns, fontsize=9)
     figure.tight_layout(rect=(0, 0.06, 1, 1))
+    return figure
+
+
+def split_pieces(
+    polygons: ScreenPolygons,
+    width: int,
+    height: int,
+    visibility: str | Visibility = "bsp",
+    polygon: int | None = None,
+    **options,
+):
+    """The pieces of one split polygon: each piece's samples, and how many pieces cover each.
+
+    Parameters
+    ----------
+    polygons : ScreenPolygons
+        The scene, in display coordinates.
+    width, height : int
+        Raster size.
+    visibility : str or Visibility
+        A list-priority algorithm that splits ("bsp", "depth_sort").
+    polygon : int, optional
+        The polygon to show; default: the first one the algorithm split.
+    **options
+        As `scanviz.visibility.solve`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Left, each piece's samples in its own colour (a square centred on
+        each sample), with its outline (the polygon clipped at the cut
+        lines) and label; right, the number of
+        pieces covering each of the polygon's samples, titled with the
+        samples covered once (red: none or two, which a correct split never
+        leaves).
+
+    Examples
+    --------
+    >>> from scanviz.visibility import examples
+    >>> figure = split_pieces(examples.split_hole(), 32, 32)
+    >>> figure.axes[1].get_title()
+    'polygon 1: 22 of 22 samples covered once'
+    """
+    from matplotlib.figure import Figure
+
+    result = solve(visibility, polygons, width, height, **options)
+    split = [piece.polygon for piece in result.order if piece.cuts]
+    if polygon is None and not split:
+        raise ValueError(f"{_label(algorithm(visibility))} split no polygon of this scene")
+    chosen = split[0] if polygon is None else int(polygon)
+    pieces = [piece for piece in result.order if piece.polygon == chosen]
+    surfaces = Surfaces.of(polygons, width, height, **options)
+    masks = [paint(surfaces, [piece], "over").polygon >= 0 for piece in pieces]
+    whole = paint(surfaces, [p for p in surfaces.pieces() if p.polygon == chosen], "over")
+    inside, counts = whole.polygon >= 0, np.sum(masks, axis=0)
+    figure = Figure(figsize=(WIDEST, WIDEST / 2 * max(height / width, 0.5) + 0.4))
+    left, right = figure.add_subplot(1, 2, 1), figure.add_subplot(1, 2, 2)
+    colors = np.ones((height, width, 3))
+    for k, (piece, mask) in enumerate(zip(pieces, masks, strict=True)):
+        colors[mask] = polygon_color(k)
+        left.fill(*piece.vertices[:, :2].T, fc="none", ec="black", lw=1.0)  # the sample frame
+        if mask.any():
+            ys, xs = np.nonzero(mask)
+            left.annotate(piece.label, (xs.mean(), ys.mean()), ha="center", va="center", fontsize=9)
+    pixel_image(left, colors, offset=-0.5)  # each square centred on its sample
+    title = f"{_label(algorithm(visibility))}: the {len(pieces)} pieces of polygon {chosen}"
+    left.set_title(title, fontsize=10)
+    once = int((inside & (counts == 1)).sum())
+    pixel_image(right, np.where(inside, counts, np.nan), offset=-0.5, cmap="Greens", vmin=0, vmax=2)
+    outline_samples(right, inside & (counts != 1) | ~inside & (counts > 0), offset=-0.5)
+    right.set_title(
+        f"polygon {chosen}: {once} of {int(inside.sum())} samples covered once", fontsize=10
+    )
+    for axes in (left, right):
+        axes.set_xlim(-0.5, width - 0.5)
+        axes.set_ylim(-0.5, height - 0.5)
+    figure.tight_layout()
     return figure
 
 

@@ -189,3 +189,14 @@ def test_cli_bench_visibility_refuses_bad_options_in_one_line(capsys, argv, mess
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert len(err.splitlines()) == 1 and message in err, err
+
+
+def test_the_bench_counts_holes_and_depths_beyond_the_promise(capsys):
+    rows = bench.run_visibility(quick=True, sizes=(10, 100), algorithms=("bsp", "depth_sort"))
+    out = capsys.readouterr().out
+    assert "holes" in out and ">slack" in out
+    for row in rows:
+        assert row["holes"] == 0 and row["beyond_slack"] == 0, row
+    painter = bench.run_visibility(quick=True, sizes=(10,), algorithms=("painter",))
+    capsys.readouterr()
+    assert [r["beyond_slack"] for r in painter if r["algorithm"] == "painter"] == [None, None]

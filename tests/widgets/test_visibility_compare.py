@@ -212,3 +212,20 @@ def test_the_widgets_use_red_only_for_the_outlines_of_differences():
     assert not any(is_red(to_rgba(c)) for c in PALETTE)
     for name, figure in widget_figures(examples.long_behind_short(), 16, 12).items():
         assert red_artists(figure) == [], name
+
+
+def test_split_pieces_shows_each_sample_covered_once():
+    from scanviz.widgets.visibility import split_pieces
+
+    figure = split_pieces(examples.interpenetrating(), 16, 12, "bsp")
+    left, right = figure.axes[:2]
+    assert left.get_title() == "bsp: the 2 pieces of polygon 1"
+    assert right.get_title() == "polygon 1: 96 of 96 samples covered once"
+    assert sorted(text.get_text() for text in left.texts) == ["1a", "1b"]
+
+
+def test_split_pieces_says_when_nothing_was_split():
+    from scanviz.widgets.visibility import split_pieces
+
+    with pytest.raises(ValueError, match="bsp split no polygon of this scene"):
+        split_pieces(examples.slides_painter(), 16, 12, "bsp")
