@@ -50,7 +50,7 @@ import numpy as np
 
 from .. import steps
 from ..conventions import check_choice
-from ..limits import check_memory
+from ..limits import ResourceLimitError, check_memory
 from ..trace.display import RichDisplay
 from ..trace.events import BspCandidate, BspNode, BspVisited, PolygonSplit
 from .interface import Decision, Visibility, piece_record, register
@@ -60,6 +60,8 @@ ROOTS = ("first", "fewest_splits", "random")
 ORDERS = ("back_to_front", "front_to_back")
 PARTS = ("back", "self", "front")
 PIECE_BYTES = 2048  # a piece, its vertices and cuts, and its place in the lists: an upper estimate
+PIECES_PER_POLYGON = 64  # the default piece budget: this many per polygon, plus PIECES_SPARE
+PIECES_SPARE = 4096
 
 
 @dataclass(frozen=True)
@@ -169,6 +171,7 @@ class _Builder:
     splits: int = 0
     pieces: int = 0
     checked: int = 1024
+    budget: int = 0  # the most pieces the build may make
 
     def build(self, pieces: list[Piece]) -> None:
         """MakeBSP with an explicit stack (front subtree first, so nodes number as the trace's)."""
@@ -261,6 +264,12 @@ class _Builder:
         nearer, farther = self.surfaces.split(piece, q)
         self.splits += 1
         self.pieces += 1
+        if self.pieces > self.budget:
+            raise ResourceLimitError(
+                f"a BSP tree of more than {self.budget:,} pieces (max_pieces): its planes cut "
+                f"the polygons over and over; use fewer or smaller polygons, "
+                f"visibility='zbuffer', or BSP(max_pieces=...)"
+            )
         if self.pieces >= self.checked:
             check_memory(self.pieces * PIECE_BYTES, f"a BSP tree of {self.pieces} pieces so far")
             self.checked = 2 * self.pieces  # check again when it has doubled
@@ -340,6 +349,12 @@ class BSP(Visibility):
     sequence : tuple of int
         Polygon ids put first in the list, in this order (the others follow in
         input order); ids of polygons that take no part are ignored.
+    max_pieces : int or None
+        The most pieces the tree may hold; building past it raises
+        `scanviz.limits.ResourceLimitError`. None: `PIECES_PER_POLYGON` per
+        polygon plus `PIECES_SPARE` (the pieces, and with them the time, can
+        grow as the square of the polygons where every plane cuts every
+        polygon).
 
     Examples
     --------
@@ -361,9 +376,16 @@ class BSP(Visibility):
     candidates: int = 5
     seed: int = 0
     sequence: tuple[int, ...] = ()
+    max_pieces: int | None = None
 
     def __post_init__(self) -> None:
         check_choice("root", self.root, ROOTS)
+        if self.max_pieces is not None and (
+            not isinstance(self.max_pieces, int | np.integer)
+            or isinstance(self.max_pieces, bool)
+            or self.max_pieces < 1
+        ):
+            raise ValueError(f"'max_pieces' must be None or an int >= 1; got {self.max_pieces!r}")
         check_choice("order", self.order, ORDERS)
         for name in ("candidates", "seed"):
             value = getattr(self, name)
@@ -384,6 +406,11 @@ class BSP(Visibility):
     def decide(self, surfaces: Surfaces, tracer) -> Decision:
         pieces = self.listed(surfaces)
         builder = _Builder(surfaces, self, tracer, np.random.default_rng(self.seed))
+        builder.budget = (
+            PIECES_PER_POLYGON * len(pieces) + PIECES_SPARE
+            if self.max_pieces is None
+            else int(self.max_pieces)
+        )
         builder.build(pieces)
         nodes = builder.tree_nodes()
         front_to_back = self.order == "front_to_back"

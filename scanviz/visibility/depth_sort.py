@@ -39,8 +39,15 @@ plus `SPLITS_SPARE`); past it, or when no member of a cycle straddles
 another's plane, the pair is accepted in list order. If the two pieces
 cover no common sample (pieces cut along the same line meet only there:
 their outlines touch, their samples do not), the order cannot matter and
-the pair is counted in ``settled["no_shared_sample"]``; otherwise it is
-counted ``unresolved``.
+the pair is counted in ``settled["no_shared_sample"]``; otherwise (or past
+`SAMPLE_CHECKS` such checks) it is counted ``unresolved``.
+
+Work: every split and swap restarts the scan, so a scene where polygons
+cover and cut each other everywhere costs about splits x pieces pair tests.
+The pairs that pass none of the four cheap tests are counted, and past
+``max_hard_pairs`` (default `HARD_PER_POLYGON` per polygon plus
+`HARD_SPARE`; ordinary scenes use a few per polygon) the sort raises
+`scanviz.limits.ResourceLimitError` rather than run for minutes.
 
 The promise (`DepthSort.depth_slack`): when nothing is unresolved, every
 sample shows a polygon at most the tolerance farther than the nearest. The
@@ -74,6 +81,7 @@ from typing import ClassVar
 import numpy as np
 
 from .. import steps
+from ..limits import ResourceLimitError
 from ..trace.display import RichDisplay
 from ..trace.events import AmbiguityTest, PairTested, PiecesSwapped, PolygonSplit, PolygonsSorted
 from .draw_decisions import paint
@@ -85,6 +93,9 @@ TESTS = ("x_extent", "y_extent", "s_behind_plane", "other_in_front", "no_overlap
 REVERSED = {"s_behind_plane": "other_behind_plane", "other_in_front": "s_in_front"}
 SPLITS_PER_POLYGON = 16
 SPLITS_SPARE = 64
+HARD_PER_POLYGON = 64  # the default work budget: pairs past the four cheap tests, per polygon
+HARD_SPARE = 4096
+SAMPLE_CHECKS = 256  # pairs checked sample by sample ("no_shared_sample") at most
 _ERROR_BOUND = 3.3306690738754716e-16  # Shewchuk's ccwerrboundA: (3 + 16 eps) eps
 _EXTENTS = ((2, True), (2, False), (0, True), (0, False), (1, True), (1, False))  # zmin, zmax, ...
 
@@ -223,16 +234,26 @@ def _orientation(a, b, c) -> int:
 @register
 @dataclass(frozen=True)
 class DepthSort(Visibility):
-    """Depth sort (options: ``max_splits``, the split budget; None: the default of the module)."""
+    """Depth sort.
+
+    Options: ``max_splits``, the split budget (past it, pairs are accepted
+    unresolved); ``max_hard_pairs``, the work budget: pairs that pass none of
+    the four cheap tests (extents and planes), past which the sort raises
+    `scanviz.limits.ResourceLimitError`. None: the defaults of the module
+    (`SPLITS_PER_POLYGON`, `HARD_PER_POLYGON` per polygon plus a spare).
+    """
 
     name: ClassVar[str] = "depth_sort"
     max_splits: int | None = None
+    max_hard_pairs: int | None = None
 
     def __post_init__(self) -> None:
-        if self.max_splits is not None and (
-            not isinstance(self.max_splits, int | np.integer) or self.max_splits < 0
-        ):
-            raise ValueError(f"'max_splits' must be None or an int >= 0; got {self.max_splits!r}")
+        for name, least in (("max_splits", 0), ("max_hard_pairs", 1)):
+            value = getattr(self, name)
+            if value is not None and (
+                not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least
+            ):
+                raise ValueError(f"{name!r} must be None or an int >= {least}; got {value!r}")
 
     def decide(self, surfaces: Surfaces, tracer) -> Decision:
         pieces = surfaces.pieces()
@@ -241,7 +262,12 @@ class DepthSort(Visibility):
             if self.max_splits is None
             else int(self.max_splits)
         )
-        sorter = _Sorter(surfaces, depth_order(pieces, "zmax"), tracer, budget)
+        hard = (
+            HARD_PER_POLYGON * len(pieces) + HARD_SPARE
+            if self.max_hard_pairs is None
+            else int(self.max_hard_pairs)
+        )
+        sorter = _Sorter(surfaces, depth_order(pieces, "zmax"), tracer, budget, hard)
         order = sorter.run()
         sorter.stats.pieces, sorter.stats.left_out = len(order), surfaces.count - len(pieces)
         return Decision(sorter.stats, tuple(order), "over")
@@ -261,8 +287,9 @@ class _Sorter:
     the per-piece arrays.
     """
 
-    def __init__(self, surfaces: Surfaces, ordered: list[Piece], tracer, budget: int) -> None:
-        self.surfaces, self.tracer, self.budget = surfaces, tracer, budget
+    def __init__(self, surfaces, ordered: list[Piece], tracer, budget: int, hard: int) -> None:
+        self.surfaces, self.tracer, self.budget, self.hard_budget = surfaces, tracer, budget, hard
+        self.hard_pairs = self.sample_checks = 0
         self.stats = DepthSortStats()
         self.test = steps.get("depth_order_test")
         self.prune = tracer is None and not steps.replaced()
@@ -396,6 +423,8 @@ class _Sorter:
         (s_vertices, s_plane), (o_vertices, o_plane) = self._plain(s), self._plain(other)
         tolerance = self.surfaces.tolerance
         settled = self.test(s_vertices, o_vertices, s_plane, o_plane, tolerance)
+        if settled not in TESTS[:4]:
+            self._count_hard()
         run = _run(settled, TESTS)
         if settled is not None:
             self._count(("minimax", *(name for name, _ in run)), settled)
@@ -414,7 +443,8 @@ class _Sorter:
         if cut is not None:
             self._emit_pair(s, other, run, settled, "split")
             return ("split", *cut, why)
-        if self._share_samples(s, other):
+        self.sample_checks += 1
+        if self.sample_checks > SAMPLE_CHECKS or self._share_samples(s, other):
             self._emit_pair(s, other, run, settled, "unresolved")
             self.stats.unresolved += 1
         else:  # only their outlines meet (pieces cut along one line): any order paints the same
@@ -423,6 +453,17 @@ class _Sorter:
             )
             self._emit_pair(s, other, run, settled, "no_shared_sample")
         return None
+
+    def _count_hard(self) -> None:
+        """Count a pair past the four cheap tests against the work budget."""
+        self.hard_pairs += 1
+        if self.hard_pairs > self.hard_budget:
+            raise ResourceLimitError(
+                f"depth sort tested more than {self.hard_budget:,} overlapping pairs "
+                f"(max_hard_pairs) and made {self.stats.splits:,} splits: the polygons cover "
+                f"and cut each other over and over; use visibility='bsp' or 'zbuffer', "
+                f"or DepthSort(max_hard_pairs=...)"
+            )
 
     def _share_samples(self, s: int, other: int) -> bool:
         """Whether the two pieces cover a common sample (each painted alone)."""
