@@ -50,10 +50,18 @@ import numpy as np
 
 from .. import steps
 from ..conventions import check_choice
-from ..limits import ResourceLimitError, check_memory
+from ..limits import check_memory
 from ..trace.display import RichDisplay
 from ..trace.events import BspCandidate, BspNode, BspVisited, PolygonSplit
-from .interface import Decision, Visibility, piece_record, register
+from .interface import (
+    Decision,
+    Visibility,
+    budget,
+    check_budget,
+    over_budget,
+    piece_record,
+    register,
+)
 from .screen_polygons import BEHIND, FRONT, ON, STRADDLES, Piece, Surfaces
 
 ROOTS = ("first", "fewest_splits", "random")
@@ -265,11 +273,8 @@ class _Builder:
         self.splits += 1
         self.pieces += 1
         if self.pieces > self.budget:
-            raise ResourceLimitError(
-                f"a BSP tree of more than {self.budget:,} pieces (max_pieces): its planes cut "
-                f"the polygons over and over; use fewer or smaller polygons, "
-                f"visibility='zbuffer', or BSP(max_pieces=...)"
-            )
+            advice = "its planes cut the polygons over and over"
+            raise over_budget("the BSP tree's pieces", self.budget, "max_pieces", advice)
         if self.pieces >= self.checked:
             check_memory(self.pieces * PIECE_BYTES, f"a BSP tree of {self.pieces} pieces so far")
             self.checked = 2 * self.pieces  # check again when it has doubled
@@ -380,12 +385,7 @@ class BSP(Visibility):
 
     def __post_init__(self) -> None:
         check_choice("root", self.root, ROOTS)
-        if self.max_pieces is not None and (
-            not isinstance(self.max_pieces, int | np.integer)
-            or isinstance(self.max_pieces, bool)
-            or self.max_pieces < 1
-        ):
-            raise ValueError(f"'max_pieces' must be None or an int >= 1; got {self.max_pieces!r}")
+        check_budget("max_pieces", self.max_pieces, 1)
         check_choice("order", self.order, ORDERS)
         for name in ("candidates", "seed"):
             value = getattr(self, name)
@@ -406,11 +406,7 @@ class BSP(Visibility):
     def decide(self, surfaces: Surfaces, tracer) -> Decision:
         pieces = self.listed(surfaces)
         builder = _Builder(surfaces, self, tracer, np.random.default_rng(self.seed))
-        builder.budget = (
-            PIECES_PER_POLYGON * len(pieces) + PIECES_SPARE
-            if self.max_pieces is None
-            else int(self.max_pieces)
-        )
+        builder.budget = budget(self.max_pieces, PIECES_PER_POLYGON, PIECES_SPARE, len(pieces))
         builder.build(pieces)
         nodes = builder.tree_nodes()
         front_to_back = self.order == "front_to_back"

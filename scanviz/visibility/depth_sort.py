@@ -81,11 +81,18 @@ from typing import ClassVar
 import numpy as np
 
 from .. import steps
-from ..limits import ResourceLimitError
 from ..trace.display import RichDisplay
 from ..trace.events import AmbiguityTest, PairTested, PiecesSwapped, PolygonSplit, PolygonsSorted
 from .draw_decisions import paint
-from .interface import Decision, Visibility, piece_record, register
+from .interface import (
+    Decision,
+    Visibility,
+    budget,
+    check_budget,
+    over_budget,
+    piece_record,
+    register,
+)
 from .painter import depth_order
 from .screen_polygons import STRADDLES, Piece, Surfaces
 
@@ -248,26 +255,14 @@ class DepthSort(Visibility):
     max_hard_pairs: int | None = None
 
     def __post_init__(self) -> None:
-        for name, least in (("max_splits", 0), ("max_hard_pairs", 1)):
-            value = getattr(self, name)
-            if value is not None and (
-                not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least
-            ):
-                raise ValueError(f"{name!r} must be None or an int >= {least}; got {value!r}")
+        check_budget("max_splits", self.max_splits, 0)
+        check_budget("max_hard_pairs", self.max_hard_pairs, 1)
 
     def decide(self, surfaces: Surfaces, tracer) -> Decision:
         pieces = surfaces.pieces()
-        budget = (
-            SPLITS_PER_POLYGON * len(pieces) + SPLITS_SPARE
-            if self.max_splits is None
-            else int(self.max_splits)
-        )
-        hard = (
-            HARD_PER_POLYGON * len(pieces) + HARD_SPARE
-            if self.max_hard_pairs is None
-            else int(self.max_hard_pairs)
-        )
-        sorter = _Sorter(surfaces, depth_order(pieces, "zmax"), tracer, budget, hard)
+        splits = budget(self.max_splits, SPLITS_PER_POLYGON, SPLITS_SPARE, len(pieces))
+        hard = budget(self.max_hard_pairs, HARD_PER_POLYGON, HARD_SPARE, len(pieces))
+        sorter = _Sorter(surfaces, depth_order(pieces, "zmax"), tracer, splits, hard)
         order = sorter.run()
         sorter.stats.pieces, sorter.stats.left_out = len(order), surfaces.count - len(pieces)
         return Decision(sorter.stats, tuple(order), "over")
@@ -458,11 +453,11 @@ class _Sorter:
         """Count a pair past the four cheap tests against the work budget."""
         self.hard_pairs += 1
         if self.hard_pairs > self.hard_budget:
-            raise ResourceLimitError(
-                f"depth sort tested more than {self.hard_budget:,} overlapping pairs "
-                f"(max_hard_pairs) and made {self.stats.splits:,} splits: the polygons cover "
-                f"and cut each other over and over; use visibility='bsp' or 'zbuffer', "
-                f"or DepthSort(max_hard_pairs=...)"
+            advice = (
+                f"after {self.stats.splits:,} splits the polygons still cover and cut each other"
+            )
+            raise over_budget(
+                "depth sort's overlapping pairs", self.hard_budget, "max_hard_pairs", advice
             )
 
     def _share_samples(self, s: int, other: int) -> bool:

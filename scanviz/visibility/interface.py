@@ -26,7 +26,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..conventions import check_choice
-from ..limits import check_memory
+from ..limits import ResourceLimitError, check_memory
 from ..raster.api import as_tracer
 from ..trace import Recorder, Trace
 from ..trace.events import PaintOrder, PieceRecord
@@ -172,6 +172,26 @@ def solve(
         decision.detail,
         recorded,
         chosen.depth_slack(surfaces, decision.stats),
+    )
+
+
+def check_budget(name: str, value: object, least: int) -> None:
+    """Check a work-budget option: None (the algorithm's default) or an int >= `least`."""
+    if value is not None and (
+        not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least
+    ):
+        raise ValueError(f"{name!r} must be None or an int >= {least}; got {value!r}")
+
+
+def budget(option: int | None, per_polygon: int, spare: int, polygons: int) -> int:
+    """A work budget: the option, or `per_polygon` per polygon plus `spare` when it is None."""
+    return per_polygon * polygons + spare if option is None else int(option)
+
+
+def over_budget(work: str, limit: int, option: str, advice: str) -> ResourceLimitError:
+    """The one-line refusal of an algorithm whose work passed its budget `option`."""
+    return ResourceLimitError(
+        f"{work} passed {limit:,} ({option}): {advice}; use visibility='zbuffer', or raise {option}"
     )
 
 
