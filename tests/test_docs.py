@@ -14,6 +14,11 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 
+# One worker builds the site, once: with `--dist loadgroup` an unmarked module's tests are
+# shared out one by one, and two workers would each build it, at the same time, in one docs/
+# (conf.py writes docs/lessons, docs/api.md, docs/generated and docs/gallery).
+pytestmark = pytest.mark.xdist_group("docs")
+
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):

@@ -21,6 +21,10 @@ from scanviz.exercises.notebook import ANSWER_MARKER
 from scanviz.exercises.report import write_reports
 from scanviz.exercises.verdict import NO_MATCH, same_run
 
+# One worker grades the class, once: with `--dist loadgroup` an unmarked module's tests are
+# shared out one by one, and each worker that got one would grade the whole class again.
+pytestmark = pytest.mark.xdist_group("class")
+
 CATALOG = exercises()
 HOSTILE = {  # a body per exercise ({name}: the function the exercise asks for)
     "main-rebinder": "import sys\nsys.modules['__main__'].run_case = None\n"
