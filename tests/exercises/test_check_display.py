@@ -101,3 +101,22 @@ def test_the_stubs_show_no_raw_record_or_dict():
         page = report._repr_html_()
         _no_repr(page)
         assert "NotImplementedError" in page and "hidden cases are graded later" in page
+
+
+def test_raster_png_draws_each_difference_once_and_keeps_them_apart():
+    from scanviz.exercises import display
+    from scanviz.exercises.compare import RasterDifference
+
+    def difference(k):
+        yours = np.zeros((6, 6), bool)
+        yours[k, :] = True
+        return RasterDifference(yours, np.ones((6, 6), bool))
+
+    display._PNG_CACHE.clear()
+    first = display.raster_png(difference(1), {"width": 6})
+    assert len(display._PNG_CACHE) == 1
+    assert display.raster_png(difference(1), {"width": 6}) == first  # an equal copy: the cache
+    assert len(display._PNG_CACHE) == 1
+    other = display.raster_png(difference(2), {"width": 6})
+    assert other != first and len(display._PNG_CACHE) == 2
+    assert other[:8] == b"\x89PNG\r\n\x1a\n"
