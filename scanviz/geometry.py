@@ -31,10 +31,13 @@ def nested_array(value: object) -> np.ndarray | None:
     """`value` as an ndarray, Python objects kept as they are (so bools stay bools).
 
     An ndarray is returned as it is; anything else becomes an object array.
-    None when the nesting is too ragged or too deep (numpy holds 32 dimensions) for numpy to hold.
+    None when the nesting is too ragged or too deep (numpy holds 32 dimensions) for numpy to hold,
+    or when a list holds masked arrays (whose masks numpy would drop).
     """
     if isinstance(value, np.ndarray):
         return value
+    if isinstance(value, (list, tuple)) and any(isinstance(v, np.ma.MaskedArray) for v in value):
+        return None  # np.array would drop the masks; `plain_array` checks such items one by one
     if isinstance(value, (list, tuple)) and _numeric_arrays(value):
         try:
             return np.array(value)  # fast: numeric arrays keep their values exactly
@@ -50,7 +53,7 @@ def nested_array(value: object) -> np.ndarray | None:
 def _numeric_arrays(items: list | tuple) -> bool:
     """True when every item is an ndarray of an int or float dtype (no bools to hide)."""
     return bool(items) and all(
-        isinstance(item, np.ndarray) and item.dtype.kind in _NUMERIC_KINDS for item in items
+        type(item) is np.ndarray and item.dtype.kind in _NUMERIC_KINDS for item in items
     )
 
 
@@ -167,6 +170,57 @@ def _within_limit(raw: np.ndarray) -> bool:
     return bool(raw.min() >= -COORD_LIMIT) and bool(raw.max() <= COORD_LIMIT)
 
 
+_KIND_NAMES = {
+    "b": "bool",
+    "c": "complex",
+    "m": "timedelta",
+    "M": "datetime",
+    "O": "Python objects",
+    "S": "bytes",
+    "U": "str",
+    "V": "structured",
+}
+NOT_REAL_KINDS = "".join(_KIND_NAMES)
+"""numpy dtype kinds that are not real numbers, for `plain_array`'s `refused`."""
+
+
+def plain_array(value: object, name: str, refused: str = "") -> object:
+    """`value` with ndarray subclasses undone, its rows too; a masked array only if none is masked.
+
+    ``np.matrix`` and other subclasses become plain ndarrays (a matrix's
+    indexing and ``*`` differ from an array's); a masked array becomes its
+    data when nothing is masked, else a ValueError says to fill it first, so
+    no masked value is read as a number. An ndarray whose dtype kind is in
+    `refused` (numpy's kind letters) raises a TypeError naming `name` and the
+    dtype. The items of a list or tuple (rows, contours) are checked the same
+    way; anything else is returned as it is.
+
+    >>> plain_array(np.ma.masked_array([1.0, 2.0], mask=[0, 1]), "'points'")
+    Traceback (most recent call last):
+    ...
+    ValueError: 'points' is a masked array with 1 masked value; fill the masked values first (np.ma.filled(array, value)) or leave them out
+    """
+    if isinstance(value, np.ma.MaskedArray):
+        masked = int(np.ma.count_masked(value))
+        if masked:
+            raise ValueError(
+                f"{name} is a masked array with {masked} masked value{'s' * (masked > 1)}; "
+                "fill the masked values first (np.ma.filled(array, value)) or leave them out"
+            )
+        value = np.ma.getdata(value)
+    if isinstance(value, np.ndarray):
+        value = np.asarray(value)  # a plain ndarray, sharing the data
+        if value.dtype.kind in refused:
+            raise TypeError(
+                f"{name} must hold real numbers (int or float); got dtype {value.dtype} "
+                f"({_KIND_NAMES[value.dtype.kind]})"
+            )
+        return value
+    if isinstance(value, (list, tuple)) and any(isinstance(item, np.ndarray) for item in value):
+        return [plain_array(item, f"{name}[{i}]", refused) for i, item in enumerate(value)]
+    return value
+
+
 def as_coordinates(value: object, name: str, shape: tuple[int | str, ...]) -> np.ndarray:
     """`value` as a new float64 array of `shape` whose every coordinate is valid (DESIGN §6).
 
@@ -208,6 +262,7 @@ def as_coordinates(value: object, name: str, shape: tuple[int | str, ...]) -> np
     ...
     ValueError: contour 0 vertex 1 = [<an int of 1329 bits>, 0] is beyond the coordinate limit of +-2**20 = 1048576 pixels
     """
+    value = plain_array(value, name)
     raw = _check_shape(nested_array(value), value, name, shape)
     if raw.dtype.kind not in _NUMERIC_KINDS + "O":
         raise TypeError(

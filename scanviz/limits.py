@@ -9,7 +9,8 @@ The memory limit is 4 GiB by default. Raise or lower it for one block with
 ``with scanviz.limits.memory_limit("16G"): ...``, or for a whole process with
 the environment variable ``SCANVIZ_MEMORY_LIMIT`` (bytes, or a number with a
 K/M/G/T suffix). File reads are bounded the same way by `file_limit`
-(256 MiB, ``SCANVIZ_FILE_LIMIT``).
+(256 MiB, ``SCANVIZ_FILE_LIMIT``), and `read_bounded` reads regular files
+only, so a FIFO or a device never blocks a reader.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import contextlib
 import os
 import re
 import signal
+import stat
 import threading
 from collections.abc import Iterator
 from contextvars import ContextVar
@@ -139,21 +141,45 @@ def check_memory(nbytes: float, what: str) -> None:
         )
 
 
-def read_bounded(path: str | os.PathLike, *, binary: bool = False) -> str | bytes:
-    """Read a file whole, refusing one larger than `current_file_limit()`.
+_FILE_KINDS = (
+    (stat.S_ISDIR, "a directory"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
 
-    The read itself is bounded too, so a device or pipe that never ends
-    (``/dev/zero``) stops at the limit. Text is decoded as UTF-8 (a leading
-    byte-order mark is dropped); an undecodable file raises a ValueError
-    naming the file and the byte offset.
+
+def read_bounded(path: str | os.PathLike, *, binary: bool = False) -> str | bytes:
+    """Read a regular file whole, refusing one larger than `current_file_limit()`.
+
+    Only regular files are read: a FIFO, device, socket or directory raises a
+    ValueError naming it, without blocking (the file is opened non-blocking
+    and checked with ``fstat`` on the open descriptor, so nothing can be
+    swapped in between). The read itself is bounded too, in case the file
+    grows. Text is decoded as UTF-8 (a leading byte-order mark is dropped); an
+    undecodable file raises a ValueError naming the file and the byte offset.
+
+    >>> read_bounded("/dev/zero")
+    Traceback (most recent call last):
+    ...
+    ValueError: '/dev/zero' is a character device, not a regular file; only regular files are read
     """
     limit = current_file_limit()
-    path = Path(path)
-    with open(path, "rb") as file:
-        data = file.read(limit + 1)
+    name = str(Path(path))
+    descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)  # a FIFO opens at once
+    try:
+        mode = os.fstat(descriptor).st_mode  # of the file opened: no race with a rename
+        if not stat.S_ISREG(mode):
+            kind = next((kind for test, kind in _FILE_KINDS if test(mode)), "a special file")
+            raise ValueError(f"{name!r} is {kind}, not a regular file; only regular files are read")
+        with open(descriptor, "rb", closefd=False) as file:
+            data = file.read(limit + 1)
+    finally:
+        os.close(descriptor)
     if len(data) > limit:
         raise ResourceLimitError(
-            f"{str(path)!r} is larger than the file limit of {format_size(limit)} "
+            f"{name!r} is larger than the file limit of {format_size(limit)} "
             f"(raise it with scanviz.limits.file_limit(...) or {FILE_ENV})"
         )
     if binary:
@@ -162,25 +188,36 @@ def read_bounded(path: str | os.PathLike, *, binary: bool = False) -> str | byte
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as error:
         raise ValueError(
-            f"{str(path)!r} is not UTF-8 text: byte {error.start} is {data[error.start]:#04x}"
+            f"{name!r} is not UTF-8 text: byte {error.start} is {data[error.start]:#04x}"
         ) from None
+
+
+_NESTING_CHUNK = 2**18  # characters scanned at once: about 2 MiB of temporaries
 
 
 def json_nesting(text: str) -> tuple[int, str]:
     """(deepest nesting of arrays and objects, `text` without its strings), before any parse.
 
     Python's JSON parser recurses, so deep text must be refused before it is
-    parsed; this scan runs at C speed and in linear time. Unbalanced text
-    gives its deepest point too (the parser then says where it breaks).
+    parsed; this scan runs at C speed and in linear time, a chunk of
+    `_NESTING_CHUNK` characters at a time with the running depth carried
+    over, so its temporaries stay a few MiB whatever the length. Unbalanced
+    text gives its deepest point too (the parser then says where it breaks).
 
     >>> json_nesting('{"a": [[1], "[[["], {}}')[0]
     3
     """
     outside_strings = _JSON_STRINGS.sub("", text)
-    brackets = np.frombuffer(_NOT_BRACKETS.sub("", outside_strings).encode(), np.uint8)
-    opening = (brackets == ord("[")) | (brackets == ord("{"))
-    depth = int(np.cumsum(np.where(opening, 1, -1).astype(np.int64)).max(initial=0))
-    return depth, outside_strings
+    depth = deepest = 0
+    for start in range(0, len(outside_strings), _NESTING_CHUNK):
+        chunk = _NOT_BRACKETS.sub("", outside_strings[start : start + _NESTING_CHUNK])
+        brackets = np.frombuffer(chunk.encode("ascii"), np.uint8)
+        opening = ((brackets == ord("[")) | (brackets == ord("{"))).astype(np.int8)
+        running = np.cumsum(2 * opening - 1, dtype=np.int32)  # steps +-1; |sum| <= 2**18
+        if running.size:
+            deepest = max(deepest, depth + int(running.max()))
+            depth += int(running[-1])
+    return deepest, outside_strings
 
 
 @contextlib.contextmanager

@@ -1,6 +1,8 @@
 """Polygon: construction, read-only contours, and validation messages (DESIGN §6)."""
 
 import math
+import re
+import warnings
 from unittest import mock
 
 import numpy as np
@@ -8,7 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanviz import Polygon, geometry
+from scanviz import Polygon, geometry, raster
+from scanviz.antialias import dislop_edge, dislop_line
 from scanviz.conventions import COORD_LIMIT
 
 TRIANGLE = [(0, 0), (4, 0), (4, 3)]
@@ -176,3 +179,55 @@ def test_fast_check_returns_and_raises_as_the_detailed_check(values, dtype):
     fast = _checked(array)
     with mock.patch.object(geometry, "_within_limit", lambda raw: False):
         assert _checked(array) == fast
+
+
+# --- issue 27: ndarray subclasses at the coordinate gate -------------------------------------------
+
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore", PendingDeprecationWarning)  # np.matrix: what users still pass
+    MATRIX = np.matrix(TRIANGLE)
+MASKED = np.ma.masked_array(TRIANGLE, mask=[[0, 0], [0, 1], [0, 0]], dtype=float)
+
+
+def test_issue27_a_matrix_is_taken_as_a_plain_array():
+    array = geometry.as_coordinates(MATRIX, "'triangle'", (3, 2))
+    assert type(array) is np.ndarray and array.tolist() == [[0, 0], [4, 0], [4, 3]]
+    samples = raster.triangle_samples(MATRIX, 6, 6)  # indexed a matrix's rows as (1, 2) before
+    plain = raster.triangle_samples(TRIANGLE, 6, 6)
+    assert samples.xs.tolist() == plain.xs.tolist() and samples.ys.tolist() == plain.ys.tolist()
+
+
+GATED = {
+    "Polygon": Polygon,
+    "as_coordinates": lambda v: geometry.as_coordinates(v, "'points'", ("N", 2)),
+    "scan_convert": lambda v: raster.scan_convert(v, 8, 8),
+    "fill_polygons": lambda v: raster.fill_polygons([v], 8, 8),
+    "rasterize_triangles": lambda v: raster.rasterize_triangles(v[None], 8, 8),
+    "triangle_samples": lambda v: raster.triangle_samples(v, 8, 8),
+    "dislop_edge": lambda v: dislop_edge(v, 8, 8),
+    "dislop_line": lambda v: dislop_line(v[0], v[1], 8, 8),
+}
+
+
+@pytest.mark.parametrize("entry", GATED.values(), ids=GATED.keys())
+def test_issue27_masked_values_are_refused_not_read(entry):
+    with pytest.raises(
+        ValueError, match="masked array with 1 masked value; fill the masked values"
+    ):
+        entry(MASKED)
+
+
+@pytest.mark.parametrize("entry", GATED.values(), ids=GATED.keys())
+def test_issue27_a_masked_array_with_nothing_masked_is_its_data(entry):
+    unmasked = np.ma.masked_array(TRIANGLE, dtype=float)
+    plain = entry(np.array(TRIANGLE, dtype=float))
+    result = entry(unmasked)
+    if isinstance(plain, np.ndarray):
+        assert type(result) is np.ndarray and np.array_equal(result, plain)
+
+
+@pytest.mark.parametrize("dtype", ["m8[s]", "M8[s]", "complex128", "bool", "U3", "S3"])
+def test_issue27_times_complex_bool_and_text_dtypes_are_refused(dtype):
+    shown = re.escape(str(np.dtype(dtype)))
+    with pytest.raises(TypeError, match=rf"^'points' must be .* got dtype {shown}$"):
+        geometry.as_coordinates(np.zeros((3, 2), dtype), "'points'", ("N", 2))

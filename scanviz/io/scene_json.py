@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..limits import json_nesting, read_bounded
+from ..limits import check_memory, json_nesting, read_bounded
 from ..scene.builtin import BUILTIN_MESHES, builtin_scene
 from ..scene.model import (
     LINEAR_LIMIT,
@@ -41,6 +41,7 @@ from ..scene.model import (
     Scene,
     SceneObject,
     check_modeling_matrix,
+    mesh_bytes,
 )
 from ..vectors import unit_vectors
 from .obj import frame_model, load_obj
@@ -49,6 +50,9 @@ FORMAT_VERSION = 1
 BUILTIN_PREFIX = "builtin:"
 MAX_DEPTH = 64
 """Deepest nesting of JSON arrays and objects a scene file may have (a scene needs 7)."""
+JSON_BYTES = 32
+"""Bytes of parsed JSON per character of text, at most (measured with tracemalloc: 12 for lists
+of positions or faces, 21 for empty arrays, up to 27 for nested objects); as for trace JSON."""
 MAX_INTEGER_DIGITS = 400
 """Longest integer literal read; longer ones are beyond float64 anyway (1.8e308 has 309 digits)."""
 _OBJ_SUFFIX = ".obj"
@@ -332,6 +336,12 @@ def _inline_mesh(path: str, fields: Mapping, palette: Mapping[str, Material]) ->
             kwargs[key] = _items(f"{path}.{key}", fields[key], _integer)
     if "materials" in fields:
         kwargs["materials"] = _each(f"{path}.materials", fields["materials"], _material, palette)
+    faces, vertices = kwargs["faces"], len(kwargs["positions"])
+    corners = sum(map(len, faces))
+    check_memory(
+        mesh_bytes(len(faces), corners, vertices),
+        f"{path} ({len(faces):,} faces, {corners:,} corners, {vertices:,} vertices)",
+    )
     return _build(path, Mesh, **kwargs)
 
 
@@ -473,11 +483,16 @@ def _parse_int(literal: str) -> int:
 def read_json(path: str | os.PathLike) -> object:
     """Parse a JSON file, bounded: `scanviz.limits.read_bounded`, `MAX_DEPTH`, `MAX_INTEGER_DIGITS`.
 
-    Raises ValueError (naming the file) for text that is not UTF-8 or not
-    JSON, nests too deep or holds an over-long integer; OSError if unreadable.
+    Raises ValueError (naming the file) for a file that is not a regular
+    file, text that is not UTF-8 or not JSON, nests too deep or holds an
+    over-long integer; `scanviz.limits.ResourceLimitError` if its parse
+    (`JSON_BYTES` a character) would pass the memory limit; OSError if unreadable.
     """
     text = read_bounded(path)
     _check_depth(text, repr(str(path)))
+    check_memory(
+        JSON_BYTES * len(text), f"parsing {str(path)!r} ({len(text):,} characters of JSON)"
+    )
     try:
         return json.loads(text, parse_int=_parse_int)
     except json.JSONDecodeError as error:

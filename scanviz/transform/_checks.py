@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..conventions import as_array, check_finite_rows, type_name
+from ..geometry import NOT_REAL_KINDS, plain_array
 from ..scene import Camera
 from ..scene.faces import face_corners
 from ..trace import Tracer
@@ -13,7 +14,14 @@ from ..trace import Tracer
 def as_points(
     name: str, value: object, columns: tuple[int, ...] | None, min_rows: int = 0
 ) -> np.ndarray:
-    """`value` as a finite (N, k) float64 array with k in `columns` (None: any k), else an error."""
+    """`value` as a finite (N, k) float64 array with k in `columns` (None: any k), else an error.
+
+    The gate of the transform functions: an ndarray subclass is made plain,
+    a masked array with masked values and an array of bool, complex,
+    datetime, timedelta, str, bytes or object dtype are refused
+    (`scanviz.geometry.plain_array`).
+    """
+    value = plain_array(value, repr(name), NOT_REAL_KINDS)
     array = as_array(value, f"{name!r} must be an array of numbers", got=type_name)
     if array.ndim != 2 or (columns is not None and array.shape[1] not in columns):
         wanted = " or ".join(f"(N, {k})" for k in columns or ("K",))
