@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..limits import read_bounded
 from ..progress import progress
 from . import PLOTTING, SUITES, suite_function
 
@@ -201,7 +202,7 @@ def markdown(info: dict, runs: list[SuiteRun], *, command: str, quick: bool) -> 
 
 def read_rows(path: str | os.PathLike) -> dict:
     """The JSON section of a report written by `run_all`: machine, quick, suites."""
-    text = Path(path).read_text(encoding="utf-8")
+    text = read_bounded(path)  # a regular file within the file limit: /dev/zero is refused
     _, found, rest = text.partition(ROWS_HEADING + "\n\n```json\n")
     if not found:
         raise ValueError(f"{str(path)!r} is not a scanviz bench report (no {ROWS_HEADING!r})")

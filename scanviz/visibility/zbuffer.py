@@ -30,6 +30,7 @@ from ..conventions import (
     check_rows,
     check_subpixel_bits,
 )
+from ..geometry import NOT_REAL_KINDS, plain_array
 from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..raster.fixed import SnappedPolygon, exact_bits, snap_units
@@ -179,20 +180,30 @@ class ScreenPolygons:
 
         Missing values give K = 0; missing 1/w gives 1.0 (orthographic).
         """
-        vertices = [np.asarray(p, dtype=np.float64).reshape(-1, 3) for p in polygons]
+        vertices = [
+            np.asarray(plain_array(p, f"polygon {k}", NOT_REAL_KINDS), dtype=np.float64).reshape(
+                -1, 3
+            )
+            for k, p in enumerate(polygons)
+        ]
         sizes = [len(v) for v in vertices]
         stacked = np.concatenate([np.zeros((0, 3)), *vertices])
         count = len(stacked)
         packed_values = np.zeros((count, 0))
         if values is not None:
             rows = [
-                np.asarray(v, np.float64).reshape(n, -1) for v, n in zip(values, sizes, strict=True)
+                np.asarray(plain_array(v, f"values {k}", NOT_REAL_KINDS), np.float64).reshape(n, -1)
+                for k, (v, n) in enumerate(zip(values, sizes, strict=True))
             ]
             packed_values = np.concatenate([np.zeros((0, rows[0].shape[1] if rows else 0)), *rows])
         packed_inv_w = np.ones(count)
         if inv_w is not None:
             packed_inv_w = np.concatenate(
-                [np.zeros(0), *(np.asarray(w, np.float64).ravel() for w in inv_w)]
+                [np.zeros(0)]
+                + [
+                    np.asarray(plain_array(w, f"inv_w {k}", NOT_REAL_KINDS), np.float64).ravel()
+                    for k, w in enumerate(inv_w)
+                ]
             )
         return cls(
             xy=stacked[:, :2],

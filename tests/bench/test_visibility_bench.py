@@ -200,3 +200,14 @@ def test_the_bench_counts_holes_and_depths_beyond_the_promise(capsys):
     painter = bench.run_visibility(quick=True, sizes=(10,), algorithms=("painter",))
     capsys.readouterr()
     assert [r["beyond_slack"] for r in painter if r["algorithm"] == "painter"] == [None, None]
+
+
+def test_bench_compare_refuses_a_device_in_one_line(capsys):
+    from scanviz.cli import main
+
+    assert main(["bench", "compare", "/dev/zero", "/dev/zero"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [
+        "python -m scanviz bench: error: '/dev/zero' is a character device, not a regular file; "
+        "only regular files are read"
+    ]
