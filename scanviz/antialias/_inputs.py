@@ -26,7 +26,10 @@ def check_radius(value: object) -> float:
     """A radius: a real number, finite, in 0..2**20 pixels."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"'radius' must be a real number; got {short_repr(value)}")
-    radius = float(value)
+    try:
+        radius = float(value)
+    except OverflowError:  # an int (or Fraction) beyond float64: past the limit below anyway
+        radius = math.inf
     if not math.isfinite(radius) or not 0.0 <= radius <= COORD_LIMIT:
         raise ValueError(f"'radius' must be finite and in 0..2**20; got {short_repr(value)}")
     return radius

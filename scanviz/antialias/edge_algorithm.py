@@ -38,6 +38,9 @@ SIDE_STEP = 1e-7  # how far beside a piece's midpoint its two sides are tested f
 PIXEL_BYTES = 19
 PLUS, MINUS, MIXED = 1, 2, 4  # which pieces touch a pixel: winding 0|+1, 0|-1, anything else
 CENTRE_MARGIN = 1e-6  # a fill sample this close to a crossing is decided by `scan_convert`
+# Steps before a polygon is refused: each pair of edges is tested for a crossing, each piece
+# tests both its sides against every edge, each fill row meets every edge (see `_work`).
+MAX_STEPS = 2**31
 
 
 def dislop_edge(polygon: object, width: int, height: int, *, trace: object = None):
@@ -63,7 +66,10 @@ def dislop_edge(polygon: object, width: int, height: int, *, trace: object = Non
     ------
     TypeError, ValueError
         As `Polygon`; or if the size is not an int in 0..2**16, or `trace` is
-        not a tracer.
+        not a tracer; or if the polygon needs more than `MAX_STEPS` steps
+        (2**31): n**2 edge pairs tested for crossings, 2 n per boundary piece
+        (an edge splits into a piece per crossing), n per raster row. So about
+        25,000 vertices at most, or about 1,500 that cross each other everywhere.
 
     Examples
     --------
@@ -78,6 +84,7 @@ def dislop_edge(polygon: object, width: int, height: int, *, trace: object = Non
     height, width = image.shape
     starts = polygon.vertices
     ends = np.concatenate([np.roll(c, -1, axis=0) for c in polygon.contours])
+    _check_work(starts, ends, height)
     if tracer is None:
         unsure, deferred = _edge_kernel(starts, ends, polygon.offsets, image)
         if unsure:  # a fill pixel whose centre is within rounding of an edge: decide it exactly
@@ -90,6 +97,42 @@ def dislop_edge(polygon: object, width: int, height: int, *, trace: object = Non
         inside = scan_convert(polygon, width, height, sample="center", subpixel_bits=None).mask
         _edge_reference(polygon, starts, ends, inside, image, tracer)
     return finish(image, trace, tracer)
+
+
+def _check_work(starts: np.ndarray, ends: np.ndarray, height: int) -> None:
+    """Refuse, with the figure and the limit, a polygon whose walk would take over `MAX_STEPS` steps."""
+    n = len(starts)
+    least = n * n + n * height
+    pieces = _count_pieces(starts, ends) if least <= MAX_STEPS else 0
+    work = least + 2 * pieces * n
+    if work > MAX_STEPS:
+        figure = f"at least {least:.3g}" if not pieces else f"{work:.3g} for {pieces} pieces"
+        raise ValueError(
+            f"dislop_edge: the polygon's {n} edges need too many steps ({figure}, limit "
+            f"{MAX_STEPS}): every pair of edges is tested for a crossing, every piece between "
+            "crossings tests its two sides against every edge, every raster row every edge; "
+            "use fewer vertices or fewer self-crossings"
+        )
+
+
+@njit(cache=True)
+def _count_pieces(starts, ends):  # pragma: no cover - compiled
+    """The pieces `_split_edges` walks, at most: each edge's crossings with the others, plus one."""
+    d = ends - starts
+    pieces = 0
+    for k in range(len(starts)):
+        if starts[k, 0] == ends[k, 0] and starts[k, 1] == ends[k, 1]:
+            continue
+        pieces += 1
+        for j in range(len(starts)):
+            denominator = d[k, 0] * d[j, 1] - d[k, 1] * d[j, 0]
+            if denominator == 0.0:
+                continue
+            ox, oy = starts[j, 0] - starts[k, 0], starts[j, 1] - starts[k, 1]
+            t = (ox * d[j, 1] - oy * d[j, 0]) / denominator
+            u = (ox * d[k, 1] - oy * d[k, 0]) / denominator
+            pieces += 0.0 < t < 1.0 and 0.0 <= u <= 1.0
+    return pieces
 
 
 def _edge_reference(polygon: Polygon, starts, ends, inside, image, tracer) -> None:

@@ -280,7 +280,7 @@ def _combine(coverage: np.ndarray, line: np.ndarray, combine: str) -> np.ndarray
 def _level(name: str, value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
         raise TypeError(f"{name!r} must be a real number; got {short_repr(value)}")
-    if not 0.0 <= float(value) <= 1.0:
+    if not 0 <= value <= 1:  # compared as given: an int past float64 is out of range, not an error
         raise ValueError(f"{name!r} must be in [0, 1]; got {short_repr(value)}")
     return float(value)
 

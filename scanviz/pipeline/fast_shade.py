@@ -14,6 +14,9 @@ dissertation's model (docs/shading-fast-phong.md, "In render"):
 * ka = ambient x colour, kd = diffuse x colour x (light colour / its
   brightest channel), ks = specular, n = exponent, r + r0 = 1 (no
   attenuation: the dissertation's distance term is a constant);
+* tables stop at level 255 (``top_level=255``): each light's colour is clipped
+  at 255 levels, so a higher level changes no pixel, and a bright light
+  (colour 10^6, N = 2.55 x 10^8) costs 2 KiB of table instead of 2 GiB;
 * one light per call of the model, the lights' colours summed and clipped
   (ambient counted once), as `illuminate` sums them;
 * L and V constant over a triangle: toward a directional light, toward a
@@ -38,6 +41,7 @@ from ..raster.api import _snap_batch
 from ..scene.model import Scene
 from ..shading.fast_phong import ReflectionModel, fast_phong_triangle
 from ..shading.fast_phong_compiled import fast_phong_triangles
+from ..shading.taylor import LEVELS
 from ..vectors import unit_vectors
 
 EXPONENT_FLOOR = 1e-6  # the table needs n > 0; a material of exponent 0 has a flat highlight
@@ -196,4 +200,5 @@ def _model(material: np.ndarray, light, ambient: np.ndarray) -> ReflectionModel:
         ks=float(ks) if light_colour.max() > 0 else 0.0,
         n=max(float(exponent), EXPONENT_FLOOR),
         r_plus_r0=1.0,
+        top_level=int(LEVELS),  # colours clip at 255 levels: higher entries change no pixel
     )

@@ -29,6 +29,10 @@ SPAN_BYTES = 3 * 8  # a (y, x_start, x_end) row of int64
 # A compiled scan holds its span buffer, the doubled copy while it grows, then the result.
 SPAN_BUFFER_BYTES = 3 * SPAN_BYTES
 VERTEX_BYTES = 20 * 8  # per vertex: snapped units, the edge table, the active edge table
+# Active-edge steps (an edge on a scanned row) `scan_convert` takes before it refuses: the
+# walk costs O(rows x active edges) (plus a sort of each row's AET), which the output need not
+# bound (edges left or right of the raster are walked all the same). About 5 s compiled.
+MAX_CROSSINGS = 2**31
 
 
 @dataclass(frozen=True)
@@ -166,7 +170,9 @@ def scan_convert(
     ValueError
         If `polygon` is malformed (see `Polygon`: shape, non-finite values,
         coordinates beyond +-2**20, fewer than 3 distinct vertices), or an
-        option is unknown or out of range.
+        option is unknown or out of range; or, on the compiled path, if the
+        edges cross more than `MAX_CROSSINGS` (2**31) sample rows in all
+        (`active_crossings`), refused before the walk.
     scanviz.limits.ResourceLimitError
         (a ValueError) If the mask (width * height bytes) and the spans (24
         bytes each) would exceed the memory limit (`scanviz.limits`).
@@ -193,11 +199,42 @@ def scan_convert(
         f"scan_convert: a {width}x{height} bool mask",
     )
     snapped = snap(polygon, sample, subpixel_bits)
+    if snapped.compilable:
+        check_crossings(snapped, width, height)
     spans, stats = scan_snapped(
         snapped, width, height, rule=rule, arithmetic=arithmetic, trace=tracer, reserved=mask_bytes
     )
     recorded = tracer.trace() if isinstance(tracer, Recorder) else None
     return ScanResult(paint_spans(spans, width, height), spans, stats, recorded)
+
+
+def active_crossings(snapped: SnappedPolygon, height: int) -> int:
+    """The active-edge steps of the ET/AET walk: per edge, the raster rows it crosses (O(n)).
+
+    >>> from scanviz.raster.fixed import snap
+    >>> active_crossings(snap(Polygon([(0, 0), (4, 0), (4, 3), (0, 3)])), 10)  # 2 edges, 3 rows
+    6
+    """
+    units, scale = np.asarray(snapped.units, np.int64), snapped.scale
+    following = np.empty_like(units)
+    for start, stop in zip(snapped.offsets[:-1], snapped.offsets[1:], strict=True):
+        following[start:stop] = np.roll(units[start:stop], -1, axis=0)
+    low = np.minimum(units[:, 1], following[:, 1])
+    high = np.maximum(units[:, 1], following[:, 1])
+    rows = np.clip(-(-high // scale), 0, height) - np.clip(-(-low // scale), 0, height)
+    return int(rows.sum())
+
+
+def check_crossings(snapped: SnappedPolygon, width: int, height: int) -> None:
+    """Refuse, with the figure and the limit, a walk of over `MAX_CROSSINGS` active-edge steps."""
+    crossings = active_crossings(snapped, height)
+    if crossings > MAX_CROSSINGS:
+        raise ValueError(
+            f"scan_convert: the polygon's {len(snapped.units)} edges cross {crossings:.3g} "
+            f"sample rows of the {width}x{height} raster (limit {MAX_CROSSINGS}): the scan "
+            "steps every active edge on every row, also edges off the raster's sides; "
+            "use fewer vertices or fewer rows"
+        )
 
 
 def _as_batch(polygons: object) -> np.ndarray | None:

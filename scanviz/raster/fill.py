@@ -38,12 +38,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..conventions import check_choice, short_repr
+from ..conventions import check_choice, check_raster_size, short_repr
 from ..geometry import Polygon
+from ..limits import check_memory
 from ..raster.api import as_tracer, scan_convert
 from ..trace import Recorder, Trace
 
 ANCHORS = ("screen", "polygon")
+# Bytes per pixel fill_polygon holds at its peak, estimated before any is allocated.
+IMAGE_PIXEL_BYTES = 1 + 3 * 8  # the bool mask and the (H, W, 3) float64 image
+PATTERN_PIXEL_BYTES = 7 * 8  # row and column indices, their remainders, the gathered tile colours
+WASH_PIXEL_BYTES = 8 * (2 + 3)  # the z-buffer's depth, ids and three colour channels
 
 
 def _colour(name: str, value: object) -> tuple[float, float, float]:
@@ -214,6 +219,10 @@ def fill_polygon(
         As `scan_convert`; or a colour outside [0, 1]; `VertexColours` whose
         count is not the vertex count; a wash or vertex colours on a polygon of
         several contours.
+    scanviz.limits.ResourceLimitError
+        If the image, its mask and the fill's buffers (25 bytes a pixel, 81
+        for a pattern, 65 for a wash or vertex colours) would exceed the memory
+        limit, refused before any is allocated.
 
     Examples
     --------
@@ -231,6 +240,12 @@ def fill_polygon(
     background = np.array(_colour("background", background))
     tracer = as_tracer(trace)
     polygon = Polygon(polygon)
+    width, height = check_raster_size(width, height)
+    extra = {Solid: 0, Pattern: PATTERN_PIXEL_BYTES}.get(type(fill), WASH_PIXEL_BYTES)
+    check_memory(
+        (IMAGE_PIXEL_BYTES + extra) * width * height,
+        f"fill_polygon: a {width}x{height} RGB image with its mask and {type(fill).__name__} fill",
+    )
     if isinstance(fill, Solid | Pattern):
         scanned = scan_convert(
             polygon,

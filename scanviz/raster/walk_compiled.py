@@ -46,6 +46,7 @@ Q, R, Q_STEP, R_STEP, DEN, CEIL = range(2, 8)
 X, SLOPE = range(2)
 TABLE_FIELDS, AET_FIELDS = 9, 8
 SORTED_IN_PLACE = 64  # polygons up to this many edges sort their edge table by insertion
+SORT_MOVES_PER_EDGE = 16  # the AET's insertion sort hands over to a merge sort past this many
 
 
 @njit(cache=True, inline="always")
@@ -238,9 +239,53 @@ def before(aet, i, j, by_x):
     return left_high < right_high or (left_high == right_high and left_low < right_low)
 
 
+@njit(cache=True)
+def merge_sort_active(aet, xs, edge_of, count, by_x):
+    """Stable merge sort of the first `count` AET entries: the insertion sort's order, in O(n log n).
+
+    Sorts a permutation (bottom-up, comparing the entries in place), then
+    gathers the columns through a copy.
+    """
+    order, spare = np.arange(count), np.empty(count, np.int64)
+    width = 1
+    while width < count:
+        for low in range(0, count, 2 * width):
+            middle, high = min(low + width, count), min(low + 2 * width, count)
+            i, j = low, middle
+            for k in range(low, high):
+                # take from the right run only when strictly before: ties keep their order
+                if j < high and (i >= middle or before(aet, order[j], order[i], by_x)):
+                    spare[k] = order[j]
+                    j += 1
+                else:
+                    spare[k] = order[i]
+                    i += 1
+        order, spare = spare, order
+        width *= 2
+    old_aet, old_xs, old_edge_of = (
+        aet[:, :count].copy(),
+        xs[:, :count].copy(),
+        edge_of[:count].copy(),
+    )
+    for k in range(count):
+        aet[:, k], xs[:, k], edge_of[k] = (
+            old_aet[:, order[k]],
+            old_xs[:, order[k]],
+            old_edge_of[order[k]],
+        )
+
+
 @njit(cache=True, inline="always")
 def sort_active(aet, xs, edge_of, count, by_x):
-    """aet_sorted: stable insertion sort (nearly sorted already); column `count` holds."""
+    """aet_sorted: stable insertion sort (nearly sorted already); column `count` holds.
+
+    An AET whose order is scrambled from row to row (edges that cross, as in a
+    star of many spikes) would cost the insertion sort O(n^2) moves: past
+    `SORT_MOVES_PER_EDGE` moves an edge it stops and `merge_sort_active`
+    finishes. Both are stable and the insertion sort only ever moves an entry
+    past strictly greater ones, so the order is the same either way.
+    """
+    budget = SORT_MOVES_PER_EDGE * count + SORT_MOVES_PER_EDGE
     for i in range(1, count):
         if before(aet, i, i - 1, by_x):
             move(aet, xs, edge_of, i, count)
@@ -249,6 +294,10 @@ def sort_active(aet, xs, edge_of, count, by_x):
                 move(aet, xs, edge_of, j - 1, j)
                 j -= 1
             move(aet, xs, edge_of, count, j)
+            budget -= i - j
+            if budget < 0:
+                merge_sort_active(aet, xs, edge_of, count, by_x)
+                return
 
 
 @njit(cache=True, inline="always")

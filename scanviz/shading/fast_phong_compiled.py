@@ -23,6 +23,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..limits import check_memory
 from ..raster.walk_compiled import triangle_span, triangle_walk
 from .lut import lut_level_compiled
 from .taylor import LEVELS, _forms, _halfway, _plane, _unit3, phi_series, theta_series
@@ -159,6 +160,8 @@ def fast_phong_triangles(
         Samples written.
     """
     vertices = (units + sample_shift) / scale  # exact: a power-of-two scale
+    entries = sum(len(t) for t in tables)
+    check_memory(8.0 * entries, f"fast Phong's {len(tables)} specular tables ({entries} entries)")
     flat = np.concatenate([np.zeros(0)] + [np.asarray(t, dtype=np.float64) for t in tables])
     offsets = np.cumsum([0] + [len(t) for t in tables]).astype(np.int64)
     return _shade_batch(

@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from ..conventions import short_repr
 from ..scene.model import Light
 from .illumination import (
     _COLOR,
@@ -37,9 +38,13 @@ from .illumination import (
 def _parameter(name: str, value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise TypeError(f"{name!r} must be a number; got {value!r}")
-    if not (math.isfinite(value) and value >= 0):
-        raise ValueError(f"{name!r} must be finite and >= 0; got {value}")
-    return float(value)
+    try:
+        number = float(value)
+    except OverflowError:  # an int past float64
+        number = math.inf
+    if not (math.isfinite(number) and number >= 0):
+        raise ValueError(f"{name!r} must be finite and >= 0; got {short_repr(value)}")
+    return number
 
 
 def gooch(

@@ -71,7 +71,9 @@ def _count(entries: int) -> str:
     return digits if len(digits) <= 15 else f"about 10^{len(digits) - 1}"
 
 
-def specular_lut(Ip: float, ks: float, r_plus_r0: float, n: float) -> np.ndarray:
+def specular_lut(
+    Ip: float, ks: float, r_plus_r0: float, n: float, *, top: int | None = None
+) -> np.ndarray:
     """The table cos φ_j = (j/N)^(1/n), j = 1..N, with N = floor(Ip·ks/(r + r0)).
 
     Parameters
@@ -84,12 +86,17 @@ def specular_lut(Ip: float, ks: float, r_plus_r0: float, n: float) -> np.ndarray
         The distance term r + r0, >= 1, taken constant over the surface.
     n : float
         Specular exponent, > 0.
+    top : int, optional
+        Keep only the entries j = 1..min(N, top), so a look-up gives
+        min(level, top). Fast Phong clips each colour at 255 levels, so past
+        ``top=255`` no entry can change a pixel: `render` builds its tables so,
+        and a bright light (Ip·ks of 10^8) costs 2 KiB instead of gigabytes.
 
     Returns
     -------
-    (N,) ndarray of float64
-        Read-only, nondecreasing, positive, ending at 1.0. Entry ``j - 1`` is cos φ_j.
-        Empty when N = 0 (e.g. ks = 0): every look-up then gives level 0.
+    (min(N, top),) ndarray of float64
+        Read-only, nondecreasing, positive, ending at 1.0 when it is whole. Entry
+        ``j - 1`` is cos φ_j. Empty when N = 0 (e.g. ks = 0): every look-up then gives level 0.
 
     Raises
     ------
@@ -109,14 +116,27 @@ def specular_lut(Ip: float, ks: float, r_plus_r0: float, n: float) -> np.ndarray
     (106, [0.4597, 0.516], 1.0)
     >>> specular_lut(255, 0, 1, 6).shape
     (0,)
+    >>> bright = specular_lut(255e8, 1, 1, 6, top=255)     # the same first 255 entries as N's
+    >>> len(bright), float(bright[0]) == (1 / 255e8) ** (1 / 6)
+    (255, True)
     """
-    entries = table_size(Ip, ks, r_plus_r0)
+    levels = table_size(Ip, ks, r_plus_r0)
     n = _exponent(n)
+    if top is not None:
+        if isinstance(top, bool) or not isinstance(top, numbers.Integral) or top < 0:
+            raise ValueError(f"'top' (the highest level kept) must be an int >= 0; got {top!r}")
+    entries = levels if top is None else min(levels, int(top))
     nbytes = float(_BYTES_PER_ENTRY * entries) if entries < 2**1000 else math.inf
     check_memory(nbytes, f"a specular look-up table of N = {_count(entries)} entries")
     table = np.arange(1, entries + 1, dtype=np.float64)
-    table /= entries
-    np.power(table, 1.0 / n, out=table)
+    if levels < 2**1000:
+        table /= levels
+        np.power(table, 1.0 / n, out=table)
+    else:  # j/N underflows in float64: take (j/N)^(1/n) through logarithms (exact N's log)
+        np.log(table, out=table)
+        table -= math.log(levels)
+        table /= n
+        np.exp(table, out=table)
     # for n < 1 small entries underflow; the true value is > 0, so cos φ <= 0 must stay level 0
     np.maximum(table, np.finfo(np.float64).smallest_subnormal, out=table)
     table.flags.writeable = False

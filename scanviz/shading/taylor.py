@@ -119,11 +119,16 @@ class ReflectionModel:
         The distance term r + r0, >= 1, constant over the surface.
     specular : {"phong", "blinn"}
         Highlight cos φ = R̂·V̂ or N̂·Ĥ; each has its own look-up table.
+    top_level : int, optional
+        Keep only the table's first `top_level` entries (levels above it read
+        as `top_level`). Each colour is clipped at 255 levels, so
+        ``top_level=255`` changes no colour and bounds the table of a bright
+        light (`render` uses it); None keeps all N, as the dissertation does.
 
     Attributes
     ----------
-    table : (N,) ndarray of float64
-        ``specular_lut(Ip, ks, r_plus_r0, n)``, built once per surface.
+    table : (min(N, top_level),) ndarray of float64
+        ``specular_lut(Ip, ks, r_plus_r0, n, top=top_level)``, built once per surface.
 
     Examples
     --------
@@ -140,6 +145,7 @@ class ReflectionModel:
     n: float = 8.0
     r_plus_r0: float = 1.5
     specular: str = "phong"
+    top_level: int | None = None
     table: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -149,7 +155,8 @@ class ReflectionModel:
             object.__setattr__(self, name, finite_real(name, getattr(self, name)))
         check_choice("specular", self.specular, SPECULAR_MODELS)
         # specular_lut checks Ip > 0, ks >= 0, r + r0 >= 1 and n > 0
-        object.__setattr__(self, "table", specular_lut(self.Ip, self.ks, self.r_plus_r0, self.n))
+        table = specular_lut(self.Ip, self.ks, self.r_plus_r0, self.n, top=self.top_level)
+        object.__setattr__(self, "table", table)
 
     @property
     def ambient_term(self) -> tuple[float, float, float]:

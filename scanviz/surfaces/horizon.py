@@ -30,20 +30,23 @@ x-monotone curves). Screen coordinates are y up, row 0 at the bottom.
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
 
 from ..conventions import check_raster_size, short_repr
+from ..limits import check_memory
 from ..raster.api import as_tracer
 from ..raster.lines import paint_lines
+from ..trace import Recorder, Trace
 from ..trace.display import RichDisplay
 from ..trace.events import HorizonColumn, HorizonCurve
 from .grid import GridSurface
 from .view import View
 
 FAMILIES = ("x", "y")
+LINE_IMAGE_PIXEL_BYTES = 1 + 8 + 3 * 8  # the bool lines, the gray image, its RGB copy
 FLAG_PAIRS = tuple((p, c) for p in (1, 0, -1) for c in (1, 0, -1))
 """The nine (previous, current) flag combinations, in the order `HorizonStats` counts them."""
 
@@ -81,6 +84,8 @@ class HorizonResult:
     order : tuple of int
         The curves in processing order (nearest first).
     stats : HorizonStats
+    trace : Trace or None
+        The recorded events when a recording tracer (or True) was given.
     """
 
     lines: np.ndarray
@@ -90,6 +95,7 @@ class HorizonResult:
     low: np.ndarray
     order: tuple[int, ...]
     stats: HorizonStats
+    trace: Trace | None = field(default=None)
 
 
 def floating_horizon(
@@ -128,6 +134,9 @@ def floating_horizon(
     ValueError
         If width or height is < 1 or `family` is unknown; the View's own
         error if a grid point is not in front of a perspective viewpoint.
+    scanviz.limits.ResourceLimitError
+        If the line raster and its image (33 bytes a pixel) would exceed the
+        memory limit, refused before any is allocated.
 
     Examples
     --------
@@ -147,6 +156,10 @@ def floating_horizon(
     """
     width, height = _check(surface, view, width, height, family)
     tracer = as_tracer(trace)
+    check_memory(
+        LINE_IMAGE_PIXEL_BYTES * width * height + 16 * width + 40 * surface.nx * surface.ny,
+        f"floating_horizon: a {width}x{height} line image of a {surface.nx}x{surface.ny} grid",
+    )
     grid = np.stack(np.meshgrid(surface.x, surface.y), axis=-1)  # (Ny, Nx, 2)
     points = np.concatenate([grid, surface.z[..., None]], axis=-1).reshape(-1, 3)
     screen = view.screen_from_world(points, width, height)[0].reshape(surface.ny, surface.nx, 2)
@@ -176,7 +189,8 @@ def floating_horizon(
         segments=len(segments),
         intersections={pair: counts[pair] for pair in FLAG_PAIRS},
     )
-    return HorizonResult(lines, image, segments, up, low, order, stats)
+    recorded = tracer.trace() if isinstance(tracer, Recorder) else None
+    return HorizonResult(lines, image, segments, up, low, order, stats, recorded)
 
 
 def _check(surface: object, view: object, width: object, height: object, family: object):

@@ -63,6 +63,7 @@ from ..visibility.interface import Decision, Visibility
 from .enumeration import Enumeration, enumerate_facets
 from .facet_edges import KINDS, FacetEdges, facet_edges
 from .grid import GridSurface
+from .horizon import LINE_IMAGE_PIXEL_BYTES
 from .view import View
 
 MODES = ("lines", "surface")
@@ -332,7 +333,7 @@ def floating_perimeter(
     starts, ends = edge_endpoints(edges.edges, surface.nx)
     counts = np.abs(pixels[ends] - pixels[starts]).max(axis=1) + 1
     check_memory(
-        int(counts.sum()) * _BYTES_PER_EDGE_POINT,
+        int(counts.sum()) * _BYTES_PER_EDGE_POINT + LINE_IMAGE_PIXEL_BYTES * width * height,
         f"the floating perimeter of a {surface.nx}x{surface.ny} grid at {width}x{height}",
     )
     points, point_edge = edge_points(pixels[starts], pixels[ends])
