@@ -68,7 +68,7 @@ ROOTS = ("first", "fewest_splits", "random")
 ORDERS = ("back_to_front", "front_to_back")
 PARTS = ("back", "self", "front")
 PIECE_BYTES = 2048  # a piece, its vertices and cuts, and its place in the lists: an upper estimate
-PIECES_PER_POLYGON = 64  # the default piece budget: this many per polygon, plus PIECES_SPARE
+PIECES_PER_POLYGON = 8  # the default piece budget: this many per polygon, plus PIECES_SPARE
 PIECES_SPARE = 4096
 
 

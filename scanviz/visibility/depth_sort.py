@@ -44,10 +44,12 @@ the pair is counted in ``settled["no_shared_sample"]``; otherwise (or past
 
 Work: every split and swap restarts the scan, so a scene where polygons
 cover and cut each other everywhere costs about splits x pieces pair tests.
-The pairs that pass none of the four cheap tests are counted, and past
-``max_hard_pairs`` (default `HARD_PER_POLYGON` per polygon plus
-`HARD_SPARE`; ordinary scenes use a few per polygon) the sort raises
-`scanviz.limits.ResourceLimitError` rather than run for minutes.
+The pairs that pass none of the four cheap tests (each a call of the step)
+and all the pairs tested (most settled by the vectorised tests) are
+counted, and past ``max_hard_pairs`` or ``max_pairs`` (defaults
+`HARD_PER_POLYGON` and `PAIRS_PER_POLYGON` per polygon plus a spare;
+ordinary scenes use a few hard pairs and under 100 pairs per polygon) the
+sort raises `scanviz.limits.ResourceLimitError` rather than run for minutes.
 
 The promise (`DepthSort.depth_slack`): when nothing is unresolved, every
 sample shows a polygon at most the tolerance farther than the nearest. The
@@ -102,6 +104,8 @@ SPLITS_PER_POLYGON = 16
 SPLITS_SPARE = 64
 HARD_PER_POLYGON = 64  # the default work budget: pairs past the four cheap tests, per polygon
 HARD_SPARE = 4096
+PAIRS_PER_POLYGON = 256  # and every pair tested, minimax included (the vectorised scans' work)
+PAIRS_SPARE = 2**20
 SAMPLE_CHECKS = 256  # pairs checked sample by sample ("no_shared_sample") at most
 _ERROR_BOUND = 3.3306690738754716e-16  # Shewchuk's ccwerrboundA: (3 + 16 eps) eps
 _EXTENTS = ((2, True), (2, False), (0, True), (0, False), (1, True), (1, False))  # zmin, zmax, ...
@@ -244,25 +248,29 @@ class DepthSort(Visibility):
     """Depth sort.
 
     Options: ``max_splits``, the split budget (past it, pairs are accepted
-    unresolved); ``max_hard_pairs``, the work budget: pairs that pass none of
-    the four cheap tests (extents and planes), past which the sort raises
-    `scanviz.limits.ResourceLimitError`. None: the defaults of the module
-    (`SPLITS_PER_POLYGON`, `HARD_PER_POLYGON` per polygon plus a spare).
+    unresolved); the work budgets ``max_hard_pairs`` (pairs that pass none of
+    the four cheap tests: extents and planes) and ``max_pairs`` (all pairs
+    tested), past which the sort raises `scanviz.limits.ResourceLimitError`.
+    None: the defaults of the module (`SPLITS_PER_POLYGON`,
+    `HARD_PER_POLYGON`, `PAIRS_PER_POLYGON` per polygon plus a spare).
     """
 
     name: ClassVar[str] = "depth_sort"
     max_splits: int | None = None
     max_hard_pairs: int | None = None
+    max_pairs: int | None = None
 
     def __post_init__(self) -> None:
         check_budget("max_splits", self.max_splits, 0)
         check_budget("max_hard_pairs", self.max_hard_pairs, 1)
+        check_budget("max_pairs", self.max_pairs, 1)
 
     def decide(self, surfaces: Surfaces, tracer) -> Decision:
         pieces = surfaces.pieces()
         splits = budget(self.max_splits, SPLITS_PER_POLYGON, SPLITS_SPARE, len(pieces))
         hard = budget(self.max_hard_pairs, HARD_PER_POLYGON, HARD_SPARE, len(pieces))
-        sorter = _Sorter(surfaces, depth_order(pieces, "zmax"), tracer, splits, hard)
+        pairs = budget(self.max_pairs, PAIRS_PER_POLYGON, PAIRS_SPARE, len(pieces))
+        sorter = _Sorter(surfaces, depth_order(pieces, "zmax"), tracer, splits, (hard, pairs))
         order = sorter.run()
         sorter.stats.pieces, sorter.stats.left_out = len(order), surfaces.count - len(pieces)
         return Decision(sorter.stats, tuple(order), "over")
@@ -282,8 +290,9 @@ class _Sorter:
     the per-piece arrays.
     """
 
-    def __init__(self, surfaces, ordered: list[Piece], tracer, budget: int, hard: int) -> None:
-        self.surfaces, self.tracer, self.budget, self.hard_budget = surfaces, tracer, budget, hard
+    def __init__(self, surfaces, ordered: list[Piece], tracer, budget: int, work: tuple) -> None:
+        self.surfaces, self.tracer, self.budget = surfaces, tracer, budget
+        self.hard_budget, self.pairs_budget = work
         self.hard_pairs = self.sample_checks = 0
         self.stats = DepthSortStats()
         self.test = steps.get("depth_order_test")
@@ -328,6 +337,9 @@ class _Sorter:
         while self.stack or self.start < len(self.rest):
             s = self.stack[-1] if self.stack else int(self.rest[self.start])
             action = self._scan(s)
+            if self.stats.pairs_tested > self.pairs_budget:
+                advice = f"after {self.stats.splits:,} splits the list is still being reordered"
+                raise over_budget("depth sort's pair tests", self.pairs_budget, "max_pairs", advice)
             if action is None:
                 painted.append(self.pieces[s])
                 if self.stack:

@@ -16,12 +16,16 @@ def _covering_triangles(count: int, size: int = 64, seed: int = 0) -> ScreenPoly
 
 
 def test_bsp_refuses_a_tree_past_its_piece_budget():
-    with pytest.raises(ResourceLimitError, match=r"the BSP tree's pieces passed [\d,]+ \(max_pieces\)"):
+    with pytest.raises(
+        ResourceLimitError, match=r"the BSP tree's pieces passed [\d,]+ \(max_pieces\)"
+    ):
         solve("bsp", _covering_triangles(300), 64, 64)
 
 
-def test_depth_sort_refuses_past_its_work_budget():
-    with pytest.raises(ResourceLimitError, match=r"depth sort's overlapping pairs passed [\d,]+ \(max_hard_pairs\)"):
+def test_depth_sort_refuses_past_its_work_budgets():
+    with pytest.raises(
+        ResourceLimitError, match=r"depth sort's overlapping pairs passed [\d,]+ \(max_hard_pairs\)"
+    ):
         solve("depth_sort", _covering_triangles(100), 64, 64)
 
 
@@ -34,6 +38,8 @@ def test_the_budgets_are_options():
         solve(BSP(max_pieces=pieces - 1), scene, 24, 24)
     with pytest.raises(ResourceLimitError, match=r"pairs passed 1 \(max_hard_pairs\)"):
         solve(DepthSort(max_hard_pairs=1), scene, 24, 24)
+    with pytest.raises(ResourceLimitError, match=r"pair tests passed 1 \(max_pairs\)"):
+        solve(DepthSort(max_pairs=1), scene, 24, 24)
     assert solve(DepthSort(), scene, 24, 24).algorithm.unresolved == 0
 
 
@@ -43,6 +49,8 @@ def test_bad_budgets_are_refused(bad):
         BSP(max_pieces=bad)
     with pytest.raises(ValueError, match="'max_hard_pairs' must be None or an int >= 1"):
         DepthSort(max_hard_pairs=bad)
+    with pytest.raises(ValueError, match="'max_pairs' must be None or an int >= 1"):
+        DepthSort(max_pairs=bad)
 
 
 def test_ordinary_scenes_stay_far_below_the_budgets():
