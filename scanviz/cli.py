@@ -3,7 +3,10 @@
 Bad input exits with status 2 and exactly one line on stderr, never a
 traceback: a ValueError, TypeError or OSError (a refused resource limit is a
 ValueError) is the user's error, reported with newlines and other control
-characters escaped as in a Python string literal. Ctrl-C prints
+characters escaped as in a Python string literal and long echoed input
+shortened (`one_line`); Python's and numpy's warnings wait until the command
+ends and are dropped when it fails (the error says what went wrong), else
+shown one line each. Ctrl-C prints
 ``interrupted`` (``bench: interrupted``, with where ``bench all`` wrote its
 partial report) and exits with 130. Any other exception is a bug and shows
 its traceback. Reference: ``docs/cli.md``, ``docs/benchmarks.md``.
@@ -14,7 +17,9 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +35,14 @@ _OUTPUT_HELP = f"image file to write: {', '.join(IMAGE_FORMATS)}"
 VISIBILITY_NAMES = ("zbuffer", "painter", "depth_sort", "bsp", "scanline", "warnock", "abuffer", "flawed")  # fmt: skip
 _EXPORT_BYTES_PER_PIXEL = 40  # float RGBA and 8-bit copies while matplotlib encodes the image
 _SHOWN = 60  # longest argument quoted whole in a message
+_ECHOED = 160  # longest echoed input a message keeps whole (a long path, say); else its start
+MAX_LINE = 1000  # longest message line: echoed input is shortened first, lists are kept
+# Echoed input in a message: a quoted string (not an apostrophe inside a word) or a run of
+# non-blank characters, longer than _ECHOED.
+_LONG_INPUT = re.compile(
+    rf"(?<!\w)'[^']{{{_ECHOED + 1},}}'(?!\w)|(?<!\w)\"[^\"]{{{_ECHOED + 1},}}\"(?!\w)"
+    rf"|[^\s'\"]{{{_ECHOED + 1},}}"
+)
 
 
 def escaped(text: str) -> str:
@@ -39,6 +52,25 @@ def escaped(text: str) -> str:
     'a\\\\nb\\\\tc é'
     """
     return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+
+
+def _shortened(match: re.Match) -> str:
+    text = match.group()
+    quote = text[0] if text[0] in "'\"" else ""
+    inner = text[1:-1] if quote else text
+    return f"{quote}{inner[:_SHOWN]}...{quote} ({len(inner):,} characters)"
+
+
+def one_line(message: str) -> str:
+    """`message` escaped onto one line, echoed input over 160 characters shortened, at most 1,000.
+
+    >>> one_line("no such file: '" + "ab" * 2500 + "'")
+    "no such file: 'abababababababababababababababababababababababababababababab...' (5,000 characters)"
+    """
+    line = _LONG_INPUT.sub(_shortened, escaped(message))
+    if len(line) > MAX_LINE:
+        line = f"{line[: MAX_LINE - 40]}... ({len(line):,} characters)"
+    return line
 
 
 def _shown(text: str) -> str:
@@ -57,33 +89,62 @@ class _Parser(argparse.ArgumentParser):
         if run is not None:
             self.set_defaults(run=run)
 
+    def parse_args(self, args=None, namespace=None):  # type: ignore[override]
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:  # argparse would list them whole, however long
+            listed = " ".join(extras)
+            if len(listed) > _ECHOED:
+                count = f"{len(listed):,} characters in {len(extras)} arguments"
+                listed = f"{listed[:_SHOWN]!r}... ({count})"
+            self.error(f"unrecognized arguments: {listed}")
+        return parsed
+
     def error(self, message: str):  # type: ignore[override]
-        self.exit(2, f"{self.prog}: error: {escaped(message)} (see --help)\n")
+        self.exit(2, f"{self.prog}: error: {one_line(message)} (see --help)\n")
 
 
-def _integer(text: str) -> int:
-    if len(text) > 30 or not text.strip().lstrip("+-").isdigit():
-        raise argparse.ArgumentTypeError(
-            f"must be an integer of at most 30 digits; got {_shown(text)}"
-        )
-    return int(text)
+# The type functions of the options raise ArgumentTypeError only, naming the rule (argparse
+# would report another ValueError as "invalid <function name> value").
 
 
-def _at_least_one(text: str) -> int:
-    value = _integer(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be >= 1; got {value}")
+def _integer(text: str, minimum: int | None = None) -> int:
+    """A decimal integer of at most 30 digits (ASCII), >= `minimum` if given."""
+    rule = "an integer" if minimum is None else f"an integer >= {minimum}"
+    digits = text.strip()
+    digits = digits[1:] if digits[:1] in ("-", "+") else digits
+    if not (digits.isascii() and digits.isdigit()) or len(digits) > 30:
+        raise argparse.ArgumentTypeError(f"must be {rule} of at most 30 digits; got {_shown(text)}")
+    value = int(text)
+    if minimum is not None and value < minimum:
+        raise argparse.ArgumentTypeError(f"must be >= {minimum}; got {value}")
     return value
 
 
-def _counts(text: str) -> tuple[int, ...]:
-    """A comma-separated list of integers >= 1."""
+def _at_least_zero(text: str) -> int:
+    return _integer(text, 0)
+
+
+def _at_least_one(text: str) -> int:
+    return _integer(text, 1)
+
+
+def _at_least_two(text: str) -> int:
+    return _integer(text, 2)
+
+
+def _counts(text: str, minimum: int = 1) -> tuple[int, ...]:
+    """A comma-separated list of integers >= `minimum`."""
     parts = [part.strip() for part in text.split(",")]
     if not all(parts):
         raise argparse.ArgumentTypeError(
-            f"must be integers >= 1 separated by commas; got {_shown(text)}"
+            f"must be integers >= {minimum} separated by commas; got {_shown(text)}"
         )
-    return tuple(_at_least_one(part) for part in parts)
+    return tuple(_integer(part, minimum) for part in parts)
+
+
+def _sides(text: str) -> tuple[int, ...]:
+    """A comma-separated list of integers >= 2 (grid points or pixels per side)."""
+    return _counts(text, 2)
 
 
 def _names(text: str) -> tuple[str, ...]:
@@ -144,7 +205,7 @@ def parse_vertices(text: str) -> Polygon:
                 x, y = (float(v) for v in token.split(","))
             except ValueError:
                 raise ValueError(
-                    f"--vertices: contour {c} point {token!r} is not of the form x,y"
+                    f"--vertices: contour {c} point {_shown(token)} is not of the form x,y"
                 ) from None
             points.append((x, y))
         contours.append(points)
@@ -152,14 +213,17 @@ def parse_vertices(text: str) -> Polygon:
 
 
 def _subpixel_bits(text: str) -> int | None:
-    if text.lower() == "none":
+    if text.strip().lower() == "none":
         return None
     try:
-        return int(text)
-    except ValueError:
+        value = _integer(text)
+    except argparse.ArgumentTypeError:
+        value = None
+    if value is None or not 0 <= value <= 16:
         raise argparse.ArgumentTypeError(
-            f"must be an int in 0..16 or 'none'; got {text!r}"
-        ) from None
+            f"must be an integer in 0..16 or 'none'; got {_shown(text)}"
+        )
+    return value
 
 
 def _default_size(polygon: Polygon) -> tuple[int, int]:
@@ -167,10 +231,12 @@ def _default_size(polygon: Polygon) -> tuple[int, int]:
     return max(math.floor(xmax) + 2, 1), max(math.floor(ymax) + 2, 1)
 
 
-def _add_scan_options(parser: argparse.ArgumentParser) -> None:
+def _add_scan_options(parser: argparse.ArgumentParser, least: int = 0) -> None:
+    """The options of trace and fill; --width and --height must be >= `least` (0 or 1)."""
+    size = _at_least_one if least else _at_least_zero
     parser.add_argument("--vertices", required=True, help='"x,y x,y ..."; ";" separates contours')
-    parser.add_argument("--width", type=_integer, help="raster width (default: fits the polygon)")
-    parser.add_argument("--height", type=_integer, help="raster height (default: fits the polygon)")
+    parser.add_argument("--width", type=size, help=f"raster width, >= {least} (default: fits the polygon)")  # fmt: skip
+    parser.add_argument("--height", type=size, help=f"raster height, >= {least} (default: fits the polygon)")  # fmt: skip
     parser.add_argument("--sample", default="corner", choices=["corner", "center"])
     parser.add_argument("--rule", default="nonzero", choices=["nonzero", "evenodd"])
     parser.add_argument("--subpixel-bits", type=_subpixel_bits, default=8, metavar="N|none")
@@ -477,7 +543,7 @@ def _add_surface_command(commands) -> None:
         help="fpa (Wang ch. 5): lines by DISLOP_L or the line LUT; surface: the silhouette by area",
     )
     add("--shading", choices=("flat", "gouraud", "phong", "gooch"), default="phong")
-    add("--points", type=_at_least_one, metavar="N", help="built-ins: points per side")
+    add("--points", type=_at_least_two, metavar="N", help="built-ins: points per side, >= 2")
     add("--viewpoint", type=_vector3, metavar="X,Y,Z", help="default: (6, 8, 3) scaled")
     add("--direction", type=_vector3, metavar="DX,DY,DZ", help="default: towards the centre")
     add("--parallel", action="store_true", help="parallel projection")
@@ -490,9 +556,9 @@ def _add_surface_command(commands) -> None:
     )
     add(
         "--marker",
-        type=int,
+        type=_at_least_zero,
         metavar="K",
-        help=f"{PHASE_SURFACE}: ring entry K shown white (the colour replacement)",
+        help=f"{PHASE_SURFACE}: ring entry K (0 <= K < 3 S) shown white (the colour replacement)",
     )
     add("--width", type=_at_least_one, default=400, metavar="N")
     add("--height", type=_at_least_one, default=400, metavar="N")
@@ -594,9 +660,9 @@ def _shard(text: str) -> tuple[int, int]:
     try:
         part, parts = (int(n) for n in text.split("/"))
     except ValueError:
-        raise argparse.ArgumentTypeError(f"must be K/N, e.g. 1/4; got {text!r}") from None
+        raise argparse.ArgumentTypeError(f"must be K/N, e.g. 1/4; got {_shown(text)}") from None
     if not 1 <= part <= parts:
-        raise argparse.ArgumentTypeError(f"must be K/N with 1 <= K <= N; got {text!r}")
+        raise argparse.ArgumentTypeError(f"must be K/N with 1 <= K <= N; got {_shown(text)}")
     return part, parts
 
 
@@ -848,8 +914,8 @@ def _add_bench_command(commands) -> None:
         "surfaces: which of fha, fpa-lines, fpa-flat, fpa-phong, zbuf-flat, zbuf-phong",
     )
     add("--budget", type=_seconds, metavar="SECONDS", help="visibility: time per algorithm (30)")
-    add("--grids", type=_counts, metavar="N,N,...", help="surfaces: grid points per side (10..200)")
-    add("--images", type=_counts, metavar="N,N,...", help="surfaces: image sides (100..600)")
+    add("--grids", type=_sides, metavar="N,N,...", help="surfaces: grid points per side (10..200)")
+    add("--images", type=_sides, metavar="N,N,...", help="surfaces: image sides (100..600)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -863,7 +929,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--gif", metavar="OUT.gif", help="save the steps as an animated GIF (as the stepper shows)"
     )
     fill = commands.add_parser("fill", help="scan-convert a polygon into a PNG", run=_cmd_fill)
-    _add_scan_options(fill)
+    _add_scan_options(fill, least=1)  # an image file has at least one pixel
     fill.add_argument("-o", "--output", required=True, help=_OUTPUT_HELP)
     fill.add_argument(
         "--scale", type=_at_least_one, default=1, help="magnify each pixel to N x N in the image"
@@ -874,9 +940,11 @@ def build_parser() -> argparse.ArgumentParser:
     summary = "the stress suite: PASS/FAIL per category"
     conformance = commands.add_parser("conformance", help=summary, run=_cmd_conformance)
     conformance.add_argument(
-        "--fuzz", type=_integer, default=0, metavar="N", help="N more fuzz inputs"
+        "--fuzz", type=_at_least_zero, default=0, metavar="N", help="N more fuzz inputs (>= 0)"
     )
-    conformance.add_argument("--seed", type=_integer, default=0, metavar="S", help="fuzz seed")
+    conformance.add_argument(
+        "--seed", type=_at_least_zero, default=0, metavar="S", help="fuzz seed (>= 0)"
+    )
     conformance.add_argument(
         "--scenes", type=_at_least_one, default=None, metavar="N",
         help="random scenes of 'visibility agrees with the z-buffer' (default 64)",
@@ -901,15 +969,20 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as stop:  # --help (0) or a one-line usage error (2)
         return stop.code if isinstance(stop.code, int) else 2
-    try:
-        status = args.run(args)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
-    except BrokenPipeError:  # the reader went away (`... | head`): stop quietly, as cat does
-        sys.stdout = open(os.devnull, "w")  # noqa: SIM115 - so the interpreter's final flush is silent
-        return 141
-    except (ValueError, TypeError, OSError) as error:
-        print(f"{parser.prog} {args.command}: error: {escaped(str(error))}", file=sys.stderr)
-        return 2
+    command = f"{parser.prog} {args.command}"
+    with warnings.catch_warnings(record=True) as caught:  # shown once the command has succeeded
+        warnings.simplefilter("default")
+        try:
+            status = args.run(args)
+        except KeyboardInterrupt:
+            print("interrupted", file=sys.stderr)
+            return 130
+        except BrokenPipeError:  # the reader went away (`... | head`): stop quietly, as cat does
+            sys.stdout = open(os.devnull, "w")  # noqa: SIM115 - so the interpreter's final flush is silent
+            return 141
+        except (ValueError, TypeError, OSError) as error:
+            print(f"{command}: error: {one_line(str(error))}", file=sys.stderr)
+            return 2
+    for warning in caught:
+        print(f"{command}: warning: {one_line(str(warning.message))}", file=sys.stderr)
     return status if isinstance(status, int) else 0

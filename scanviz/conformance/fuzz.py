@@ -10,7 +10,18 @@ the outcomes. Every outcome is one of
   TypeError, OSError for files, naming what was wrong in one line);
 * **anything else**: a wrong result, NaN in an output, any other exception, a
   call over the time budget, a MemoryError, a CLI exit other than 0 or 2 or
-  with more than one line on stderr or a traceback.
+  with more than one line on stderr, a traceback or a line over 300 characters.
+  Two kinds of it have their own columns: **too slow** (over the time budget,
+  or over a scaling input's bound) and **over memory** (a MemoryError, or a
+  scaling input whose peak memory passed its allowance).
+
+The entry "time and memory against size" is not random: it runs every input
+of `scanviz.conformance.checks.scaling_cases` once (polygons of 20,000
+vertices, 50,000 triangles, rasters under and over a 64M memory limit, deep
+JSON, long OBJ text, hundreds of triangles for each visibility algorithm, ...),
+each within a time bound proportional to its size (`check_scaling`), so a
+regression to quadratic time or an allocation the limits did not estimate is
+a failure row.
 
 Every call runs under ``scanviz.limits.memory_limit("1G")`` and, where the
 platform has it, an address-space cap a little above that (so a request the
@@ -44,12 +55,14 @@ from .checks import (
     check_obj,
     check_polygon,
     check_rasterize_triangles,
+    check_scaling,
     check_scan_convert,
     check_scene_dict,
     check_scene_file,
     check_trace,
     check_triangle_samples,
     limit_cases,
+    scaling_cases,
 )
 from .classify import clear_error, one_line, short_repr
 from .strategies import (
@@ -75,6 +88,7 @@ CALL_SECONDS = 10.0  # wall-clock budget of one call
 MEMORY_LIMIT = "1G"
 ADDRESS_HEADROOM = 2 * 2**30  # bytes of address space a call may add
 MAX_REPORTED = 20
+TOO_SLOW, OVER_MEMORY = "too slow", "over memory"  # how a failure's description starts
 
 
 @dataclass
@@ -84,8 +98,23 @@ class Counts:
     tried: int = 0
     clear: int = 0
     correct: int = 0
-    other: int = 0
+    other: int = 0  # anything else, of which:
+    slow: int = 0  # too slow
+    memory: int = 0  # over memory
     cases: list[str] = field(default_factory=list)
+
+    def add(self, verdict: str, what: str, reproducer: str) -> None:
+        """Count one outcome of `classify`; keep the reproducer of anything else."""
+        self.tried += 1
+        if verdict == "clear":
+            self.clear += 1
+        elif verdict == "correct":
+            self.correct += 1
+        else:
+            self.other += 1
+            self.slow += what.startswith(TOO_SLOW)
+            self.memory += what.startswith(OVER_MEMORY)
+            self.cases.append(f"{reproducer} -> {what}")
 
 
 class CallTimeout(BaseException):
@@ -101,6 +130,7 @@ class EntryPoint:
     call: Callable[[dict], str]
     files: bool = False
     share: float = 1.0  # relative number of inputs
+    inputs: Callable[[], list[dict]] | None = None  # a fixed list, each run once, for any count
 
 
 def _sized(**fields) -> Callable[[], st.SearchStrategy]:
@@ -176,6 +206,13 @@ ENTRY_POINTS: dict[str, EntryPoint] = {
     "memory limits": EntryPoint(
         _sized(case=lambda: st.sampled_from(sorted(limit_cases()))), check_limit, share=0.3
     ),
+    "time and memory against size": EntryPoint(
+        _sized(case=lambda: st.sampled_from(list(scaling_cases()))),
+        check_scaling,
+        files=True,  # named pipes, files over the limit
+        share=0,
+        inputs=lambda: [{"case": name} for name in scaling_cases()],
+    ),
 }
 
 
@@ -233,21 +270,27 @@ def classify(name: str, entry: EntryPoint, value: dict) -> tuple[str, str]:
         with guarded_call():
             problem = entry.call(materialize(value))
     except CallTimeout as error:
-        return "other", f"{error}"
+        return "other", f"{TOO_SLOW}: {error}"
     except Exception as error:  # noqa: BLE001 -- classifying every exception is the point
         if isinstance(error.__cause__ or error.__context__, CallTimeout):  # raised inside numba
-            return "other", f"over the {CALL_SECONDS:g} s budget (inside a compiled kernel)"
+            return "other", f"{TOO_SLOW}: over the {CALL_SECONDS:g} s budget (inside a compiled kernel)"  # fmt: skip
         if clear_error(error, files=entry.files):
             return "clear", ""
+        if isinstance(error, MemoryError):
+            return "other", f"{OVER_MEMORY}: {one_line(error)}"
         return "other", one_line(error)
     if time.perf_counter() - start > CALL_SECONDS:
-        return "other", f"took {time.perf_counter() - start:.1f} s"
+        return "other", f"{TOO_SLOW}: took {time.perf_counter() - start:.1f} s"
     return ("other", problem) if problem else ("correct", "")
 
 
 def run_entry(name: str, examples: int, seed: int) -> Counts:
-    """Run `examples` inputs of one entry point; count the outcomes."""
+    """Run `examples` inputs of one entry point (its fixed `inputs`, if any, for any count > 0)."""
     entry, counts = ENTRY_POINTS[name], Counts()
+    if entry.inputs is not None:
+        for value in entry.inputs() if examples > 0 else ():
+            counts.add(*classify(name, entry, value), f"{name}: {short_repr(value)}")
+        return counts
 
     @hypothesis.settings(
         max_examples=examples,
@@ -260,15 +303,7 @@ def run_entry(name: str, examples: int, seed: int) -> Counts:
     @hypothesis.seed(seed)
     @hypothesis.given(entry.strategy())
     def probe(value: dict) -> None:
-        verdict, what = classify(name, entry, value)
-        counts.tried += 1
-        if verdict == "clear":
-            counts.clear += 1
-        elif verdict == "correct":
-            counts.correct += 1
-        else:
-            counts.other += 1
-            counts.cases.append(f"{name}: {short_repr(value)} -> {what}")
+        counts.add(*classify(name, entry, value), f"{name}: {short_repr(value)}")
 
     if examples > 0:
         with warnings.catch_warnings():
@@ -278,7 +313,7 @@ def run_entry(name: str, examples: int, seed: int) -> Counts:
 
 
 def campaign(total: int, seed: int = 0) -> dict[str, Counts]:
-    """Spread `total` inputs over the entry points by their shares; counts per entry point."""
+    """Spread `total` inputs over the entry points by their shares (and the fixed inputs)."""
     shares = sum(e.share for e in ENTRY_POINTS.values())
     return {
         name: run_entry(name, max(1, round(total * entry.share / shares)), seed)
@@ -286,22 +321,25 @@ def campaign(total: int, seed: int = 0) -> dict[str, Counts]:
     }
 
 
+def _row(name: str, c: Counts) -> str:
+    return f"{name:<30} {c.tried:>7,} {c.clear:>13,} {c.correct:>8,} {c.other:>14,} {c.slow:>9,} {c.memory:>12,}"  # fmt: skip
+
+
 def format_table(results: dict[str, Counts]) -> list[str]:
-    """The counts table, a total row, and up to MAX_REPORTED reproducers."""
+    """The counts table, a total row, and up to MAX_REPORTED reproducers.
+
+    "too slow" and "over memory" are the part of "anything else" over a time or memory bound.
+    """
     lines = [
-        f"{'entry point':<30} {'tried':>7} {'clear errors':>13} {'correct':>8} {'anything else':>14}"
+        f"{'entry point':<30} {'tried':>7} {'clear errors':>13} {'correct':>8} {'anything else':>14} {TOO_SLOW:>9} {OVER_MEMORY:>12}"  # fmt: skip
     ]
     total = Counts()
     for name, c in results.items():
-        lines.append(f"{name:<30} {c.tried:>7,} {c.clear:>13,} {c.correct:>8,} {c.other:>14,}")
-        total.tried, total.clear, total.correct, total.other = (
-            total.tried + c.tried, total.clear + c.clear, total.correct + c.correct,
-            total.other + c.other,
-        )  # fmt: skip
+        lines.append(_row(name[:30], c))
+        for column in ("tried", "clear", "correct", "other", "slow", "memory"):
+            setattr(total, column, getattr(total, column) + getattr(c, column))
         total.cases += c.cases
-    lines.append(
-        f"{'total':<30} {total.tried:>7,} {total.clear:>13,} {total.correct:>8,} {total.other:>14,}"
-    )
+    lines.append(_row("total", total))
     lines += [f"  {case}" for case in total.cases[:MAX_REPORTED]]
     if len(total.cases) > MAX_REPORTED:
         lines.append(f"  ... and {len(total.cases) - MAX_REPORTED} more")

@@ -365,6 +365,8 @@ CLI_TOKENS = (
     "3", "-o", "OUT/out.png", "OUT/out.qqq", "OUT/noext", "OUT", "", "/dev/full", "a\nb",
     "builtin:painter", "builtin:sphere", "builtin:nope", "OUT/scene.json", "OUT/bad.json",
     "OUT/model.obj", "/nonexistent/x.json", "--mask", "4x4", "--edges", "--no-cull", "--affine",
+    "OUT/huge.obj", "\u00b2", "x" * 5000, "1," * 3000, "OUT/" + "a" * 5000 + ".png",
+    "0,0 4,0 0,4 " + "1,1,1 " * 1000,
 )  # fmt: skip
 
 
