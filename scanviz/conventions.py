@@ -127,8 +127,12 @@ def finite_real(name: str, value: object) -> float:
     """
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name!r} must be a real number; got {value!r}")
-    if not math.isfinite(value):
-        raise ValueError(f"{name!r} must be finite; got {value}")
+    try:
+        finite = math.isfinite(value)
+    except OverflowError:  # an int beyond any float
+        finite = False
+    if not finite:
+        raise ValueError(f"{name!r} must be finite; got {short_repr(value)}")
     return float(value)
 
 

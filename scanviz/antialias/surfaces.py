@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..conventions import check_choice, short_repr
+from ..limits import read_bounded
 from ..surfaces import GridSurface, View, floating_perimeter
 from ..surfaces.perimeter import PerimeterResult, visible_runs
 from ..trace.display import RichDisplay
@@ -126,20 +127,20 @@ def read_segments(path) -> np.ndarray:
         If a line does not hold 4 finite numbers (the message names the line).
     """
     rows = []
-    with open(path, encoding="ascii") as file:
-        for number, line in enumerate(file, 1):
-            if not line.strip():
-                continue
-            try:
-                values = [float(v) for v in line.split()]
-            except ValueError:
-                values = []
-            if len(values) != 4 or not np.isfinite(values).all():
-                raise ValueError(
-                    f"{path}: line {number} must hold 4 finite numbers x_s y_s x_e y_e; "
-                    f"got {line.strip()[:60]!r}"
-                )
-            rows.append(values)
+    text = read_bounded(path)  # a regular file within the file limit (no FIFO, no device)
+    for number, line in enumerate(text.splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            values = [float(v) for v in line.split()]
+        except ValueError:
+            values = []
+        if len(values) != 4 or not np.isfinite(values).all():
+            raise ValueError(
+                f"{path}: line {number} must hold 4 finite numbers x_s y_s x_e y_e; "
+                f"got {line.strip()[:60]!r}"
+            )
+        rows.append(values)
     return np.array(rows, dtype=np.float64).reshape(-1, 2, 2)
 
 

@@ -40,6 +40,7 @@ from numba import njit
 
 from .. import steps
 from ..conventions import COORD_LIMIT, short_repr
+from ..geometry import plain_array
 from ..trace import Tracer
 from ..trace.events import LineSetup, LineStep
 
@@ -202,7 +203,7 @@ def paint_lines(ends: object, width: int, height: int) -> np.ndarray:
            [0, 0, 1, 1, 0, 0],
            [1, 1, 0, 0, 0, 1]])
     """
-    array = np.asarray(ends)
+    array = np.asarray(plain_array(ends, "'ends'"))  # a masked end is refused, not read
     if array.size == 0:
         array = array.reshape(0, 4)
     if array.ndim != 2 or array.shape[1] != 4 or not np.issubdtype(array.dtype, np.integer):
