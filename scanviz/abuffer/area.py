@@ -59,6 +59,7 @@ from numba import njit
 from ..conventions import RULES, check_choice, check_raster_size, check_subpixel_bits
 from ..geometry import Polygon
 from ..limits import check_memory
+from ..raster.sorting import inversions
 
 EDGE_BYTES = 36 * 8  # per edge: its 5 arrays, its 18-word sweep table entry, lists, sorting
 MAX_WORK = 2**26  # sweep steps (edges, swaps, merges, crossed columns) before a refusal
@@ -485,29 +486,6 @@ def _coverage_kernel(
 
 
 @njit(cache=True)
-def _inversions(values, scratch):
-    """Pairs i < j with values[i] > values[j], by a bottom-up merge sort that overwrites both arrays."""
-    n = len(values)
-    inversions = 0
-    run = 1
-    while run < n:
-        for lo in range(0, n, 2 * run):
-            mid, hi = min(lo + run, n), min(lo + 2 * run, n)
-            i, j = lo, mid
-            for k in range(lo, hi):
-                if j < hi and (i == mid or values[j] < values[i]):
-                    scratch[k] = values[j]
-                    inversions += mid - i  # values[j] is below every value left in [i, mid)
-                    j += 1
-                else:
-                    scratch[k] = values[i]
-                    i += 1
-        values, scratch = scratch, values
-        run *= 2
-    return inversions
-
-
-@njit(cache=True)
 def _least_work(ax, ay, bx, by, row0, row1, max_work):
     """A lower bound on the kernel's work in rows [row0, row1); stops past `max_work`.
 
@@ -529,7 +507,7 @@ def _least_work(ax, ay, bx, by, row0, row1, max_work):
         for i, e in enumerate(spanning):
             tops[i] = _x(table[e], y + 1.0)
         m = len(spanning)
-        work += n_active + float(_inversions(tops[:m], scratch[:m]))
+        work += n_active + float(inversions(tops[:m], scratch[:m]))
         if work > max_work:
             return work
     return work

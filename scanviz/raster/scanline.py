@@ -53,6 +53,7 @@ from ..trace.events import (
     Span,
 )
 from .fixed import SnappedPolygon
+from .sorting import inversions
 
 FLOAT_X_LIMIT = 2.0**40  # float-mode crossings are clamped here before ceil (spans clip anyway)
 LISTED_SPAN_BYTES = 160  # a span as a tuple of three Python ints in a list, with its array row
@@ -427,29 +428,8 @@ def _exchanges(before: list[int], after: list[int]) -> int:
     if after == before:
         return 0
     order = {edge: k for k, edge in enumerate(before)}
-    return _inversions([order[edge] for edge in after])
-
-
-def _inversions(values: list[int]) -> int:
-    """The pairs i < j with values[i] > values[j] (distinct values), by a bottom-up merge sort."""
-    count, width, values = 0, 1, list(values)
-    while width < len(values):
-        merged = []
-        for low in range(0, len(values), 2 * width):
-            left, right = values[low : low + width], values[low + width : low + 2 * width]
-            i = j = 0
-            while i < len(left) and j < len(right):
-                if right[j] < left[i]:  # passes every element left in `left`
-                    merged.append(right[j])
-                    count += len(left) - i
-                    j += 1
-                else:
-                    merged.append(left[i])
-                    i += 1
-            merged += left[i:]
-            merged += right[j:]
-        values, width = merged, 2 * width
-    return count
+    positions = np.array([order[edge] for edge in after], np.int64)
+    return int(inversions(positions, np.empty_like(positions)))
 
 
 def _row_spans(aet: list[AetItem], edges: list[Edge], rule: str, width: int) -> list[tuple]:
