@@ -153,8 +153,8 @@ def test_cli_bench_surfaces_takes_its_own_options(capsys):
     "argv, message",
     [
         (["bench", "surfaces", "--algorithms", "nonsense"], "'nonsense' is not one of fha"),
-        (["bench", "surfaces", "--grids", "1"], "'grids' must be ints >= 2"),
-        (["bench", "surfaces", "--images", "10,,20"], "integers >= 1 separated by commas"),
+        (["bench", "surfaces", "--grids", "1"], "argument --grids: must be >= 2; got 1"),
+        (["bench", "surfaces", "--images", "10,,20"], "integers >= 2 separated by commas"),
         (["bench", "surfaces", "--repeat", "0"], "must be >= 1"),
         (["bench", "surfaces", "--sizes", "10"], "--sizes: options of 'bench visibility' only"),
         (["bench", "surfaces", "--width", "9"], "--width: options of 'bench visibility' only"),
