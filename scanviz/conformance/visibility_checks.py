@@ -25,8 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..bench.visibility import random_triangles
-from ..visibility import ALGORITHMS, examples, solve
-from ..visibility.draw_decisions import paint
+from ..visibility import ALGORITHMS, draw_decisions, examples, solve
 from ..visibility.screen_polygons import Surfaces
 from .cases import Outcome, Tally, first_difference, thousands
 
@@ -98,11 +97,11 @@ def _split_coverage(scene, width, height, sample, order) -> tuple[int, int]:
     double = missed = 0
     for polygon in cut:
         counts = sum(
-            (paint(surfaces, [piece], "over").polygon >= 0).astype(int)
+            draw_decisions.samples(surfaces, piece).astype(int)
             for piece in order
             if piece.polygon == polygon
         )
-        original = paint(surfaces, [whole[polygon]], "over").polygon >= 0
+        original = draw_decisions.samples(surfaces, whole[polygon])
         double += int((counts > 1).sum())
         missed += int((original & (counts == 0)).sum())
     return double, missed

@@ -85,7 +85,7 @@ import numpy as np
 from .. import steps
 from ..trace.display import RichDisplay
 from ..trace.events import AmbiguityTest, PairTested, PiecesSwapped, PolygonSplit, PolygonsSorted
-from .draw_decisions import paint
+from .draw_decisions import samples
 from .interface import (
     Decision,
     Visibility,
@@ -474,8 +474,8 @@ class _Sorter:
 
     def _share_samples(self, s: int, other: int) -> bool:
         """Whether the two pieces cover a common sample (each painted alone)."""
-        masks = [paint(self.surfaces, [self.pieces[k]], "over").polygon >= 0 for k in (s, other)]
-        return bool((masks[0] & masks[1]).any())
+        shared = samples(self.surfaces, self.pieces[s]) & samples(self.surfaces, self.pieces[other])
+        return bool(shared.any())
 
     def _choose_cut(self, s: int, other: int, why: str):
         """(piece, cutter): a piece straddling the other's plane, from the pair, then the cycle."""

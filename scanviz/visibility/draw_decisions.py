@@ -28,7 +28,7 @@ from ..raster.api import as_tracer
 from ..raster.fixed import SnappedPolygon
 from ..raster.interpolate import interpolate_rows, polygon_plane, span_samples
 from ..trace.events import PixelPainted
-from . import zbuffer_compiled
+from . import cut_side, zbuffer_compiled
 from .screen_polygons import Piece, Surfaces
 from .zbuffer import ZBufferStats, _attributes
 
@@ -70,6 +70,11 @@ def paint(
     return _paint_reference(surfaces, pieces, mode, target, trace)
 
 
+def samples(surfaces: Surfaces, piece: Piece) -> np.ndarray:
+    """(H, W) bool: the samples `piece` covers, painted alone (a whole polygon's, or its cut part)."""
+    return paint(surfaces, [piece], "over").polygon >= 0
+
+
 def fill(surfaces: Surfaces, target: np.ndarray, *, trace=None) -> Painted:
     """Draw every drawn polygon where `target` says it is visible (mode "target")."""
     return paint(surfaces, surfaces.pieces(), "target", target=target, trace=trace)
@@ -107,6 +112,7 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
             counts[zbuffer_compiled.SKIPPED] += 1
             continue
         fragments = counts[zbuffer_compiled.FRAGMENTS]
+        cuts = surfaces.cut_rows(piece)  # built once per piece, not per sample
         y_low, y_high = piece.rows()
         for y, spans in interpolate_rows(
             snapped, plane, surfaces.channels[first:stop], width, height
@@ -127,7 +133,7 @@ def _paint_reference(surfaces, pieces, mode, target, trace) -> Painted:
                         write = previous < 0
                     else:
                         write = int(target[y, x]) == p
-                    write = write and surfaces.keeps(piece, x, y)
+                    write = write and (not piece.cuts or bool(cut_side.keeps(cuts, x, y)))
                     if traced:
                         trace.emit(PixelPainted(p, piece.label, x, y, float(z), previous, write))
                     if write:

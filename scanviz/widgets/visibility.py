@@ -21,7 +21,7 @@ import numpy as np
 
 from ..trace import Recorder
 from ..visibility import ALGORITHMS, ScreenPolygons, Surfaces, Visibility, algorithm, solve, zbuffer
-from ..visibility.draw_decisions import paint
+from ..visibility.draw_decisions import samples
 from ._common import WIDEST, pixel_image
 
 PALETTE = (  # polygon p is PALETTE[p % 9]; no red in it: red marks a disagreement
@@ -285,9 +285,9 @@ def split_pieces(
     chosen = split[0] if polygon is None else int(polygon)
     pieces = [piece for piece in result.order if piece.polygon == chosen]
     surfaces = Surfaces.of(polygons, width, height, **options)
-    masks = [paint(surfaces, [piece], "over").polygon >= 0 for piece in pieces]
-    whole = paint(surfaces, [p for p in surfaces.pieces() if p.polygon == chosen], "over")
-    inside, counts = whole.polygon >= 0, np.sum(masks, axis=0)
+    masks = [samples(surfaces, piece) for piece in pieces]
+    whole = next(p for p in surfaces.pieces() if p.polygon == chosen)
+    inside, counts = samples(surfaces, whole), np.sum(masks, axis=0)
     figure = Figure(figsize=(WIDEST, WIDEST / 2 * max(height / width, 0.5) + 0.4))
     left, right = figure.add_subplot(1, 2, 1), figure.add_subplot(1, 2, 2)
     colors = np.ones((height, width, 3))
